@@ -1,0 +1,49 @@
+# imasim: the two commands (`make demo`, `make test`) and friends.
+# Each target installs missing Debian packages first (scripts/install-deps.sh).
+JOBS ?= $(shell nproc)
+BUILD ?= build
+ASAN_BUILD ?= build-asan
+CMAKE_FLAGS ?=
+
+.PHONY: deps configure build demo test unit-asan format-check layer-check format bench clean
+
+deps:
+	bash scripts/install-deps.sh
+
+configure: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DIMASIM_WERROR=ON $(CMAKE_FLAGS)
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	$(BUILD)/apps/imasim cloth --n 64
+
+format-check: deps
+	bash scripts/check-format.sh
+
+layer-check:
+	bash scripts/check-layers.sh
+
+# Release build with -Werror and every ctest, then the unit tests again under ASan+UBSan
+# with the expensive invariant checks (IMASIM_VALIDATION) switched on.
+test: format-check layer-check build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+	$(MAKE) unit-asan
+
+unit-asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMASIM_WERROR=ON \
+	  -DIMASIM_SANITIZE=ON -DIMASIM_VALIDATION=ON -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target imasim_unit_tests
+	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L unit
+
+format:
+	bash scripts/check-format.sh --fix
+
+bench: build
+	mkdir -p $(BUILD)/bench
+	$(BUILD)/bench/imasim_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+	  --benchmark_out=$(BUILD)/bench/imasim_bench.json --benchmark_out_format=json
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD)

@@ -1,0 +1,24 @@
+// imasim: real-time simulator for robotic internal mammary artery harvesting.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "cloth_command.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"imasim: robotic IMA harvesting simulator"};
+  app.require_subcommand(1);
+  auto cloth = imasim::cli::add_cloth_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("cloth")) return imasim::cli::run_cloth_command(*cloth);
+  } catch (const std::exception& e) {
+    std::cerr << "imasim: error: " << e.what() << '\n';
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Enforces the layer order of docs/ARCHITECTURE.md: a layer includes only itself and the
+# layers listed for it below, never a higher one.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+declare -A allowed=(
+  [math]="math"
+  [geometry]="geometry math"
+  [physics]="physics geometry math"
+  [scene]="scene physics geometry math"
+)
+bad=0
+for layer in "${!allowed[@]}"; do
+  [[ -d "src/$layer" ]] || continue
+  while IFS=: read -r file line text; do
+    inc=$(sed -E 's/.*#include "([a-z_]+)\/.*/\1/' <<<"$text")
+    [[ " ${allowed[$layer]} " == *" $inc "* ]] && continue
+    echo "check-layers: $file:$line: layer '$layer' includes '$inc'" >&2
+    bad=1
+  done < <(grep -rnE '#include "[a-z_]+/' "src/$layer" || true)
+done
+((bad == 0)) && echo "check-layers: layer order respected"
+exit $bad

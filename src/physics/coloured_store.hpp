@@ -1,0 +1,142 @@
+#pragma once
+// Constraints of one kind, grouped by colour. No two constraints of one colour share a particle,
+// so each colour can be projected in parallel without races and with a result that does not
+// depend on the thread count. A constraint that finds all kColourCount colours taken by its
+// particles goes to the overflow group, which is projected serially after the others.
+//
+// Colouring is greedy and incremental (lowest colour free for all of the constraint's particles),
+// so it stays valid as constraints are added and removed after set-up (cutting): each particle
+// keeps a bit mask of the colours it appears in. Rows move within their colour on removal
+// (swap with the last), and handles (slot + generation) follow them.
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "math/types.hpp"
+#include "physics/handle.hpp"
+
+namespace imasim::physics {
+
+template <class Row>
+class ColouredStore {
+ public:
+  static constexpr std::uint32_t kColourCount = 32;  // regular colours (bits of a mask)
+  static constexpr std::uint32_t kOverflow = kColourCount;
+  static constexpr std::uint32_t kGroupCount = kColourCount + 1;
+
+  struct Group {
+    std::vector<Row> rows;
+    std::vector<Real> lambda;  // accumulated multiplier per row, reset every substep
+  };
+
+  Handle<Row> add(Row row) {
+    std::uint32_t mask = 0;
+    for (std::uint32_t p : row.particles()) {
+      ensure_particle(p);
+      mask |= particle_colours_[p];
+    }
+    const auto colour = static_cast<std::uint32_t>(std::countr_one(mask));  // first free bit
+    const std::uint32_t group = colour < kColourCount ? colour : kOverflow;
+    if (group != kOverflow) {
+      for (std::uint32_t p : row.particles())
+        particle_colours_[p] |= 1u << group;
+    }
+    const std::uint32_t slot = allocate_slot();
+    row.slot = slot;
+    Group& g = groups_[group];
+    slots_[slot].group = group;
+    slots_[slot].position = static_cast<std::uint32_t>(g.rows.size());
+    g.rows.push_back(row);
+    g.lambda.push_back(Real(0));
+    ++size_;
+    return {slot, slots_[slot].generation};
+  }
+
+  // Removes the constraint; returns false (and does nothing) for a stale or null handle.
+  bool remove(Handle<Row> h) {
+    if (!resolves(h)) return false;
+    Slot& s = slots_[h.index];
+    Group& g = groups_[s.group];
+    if (s.group != kOverflow) {
+      for (std::uint32_t p : g.rows[s.position].particles())
+        particle_colours_[p] &= ~(1u << s.group);
+    }
+    const std::uint32_t last = static_cast<std::uint32_t>(g.rows.size() - 1);
+    if (s.position != last) {
+      g.rows[s.position] = g.rows[last];
+      g.lambda[s.position] = g.lambda[last];
+      slots_[g.rows[s.position].slot].position = s.position;
+    }
+    g.rows.pop_back();
+    g.lambda.pop_back();
+    s.live = false;
+    ++s.generation;
+    free_slots_.push_back(h.index);
+    --size_;
+    return true;
+  }
+
+  bool resolves(Handle<Row> h) const {
+    return h.index < slots_.size() && slots_[h.index].live &&
+           slots_[h.index].generation == h.generation;
+  }
+  Row* find(Handle<Row> h) {
+    return resolves(h) ? &groups_[slots_[h.index].group].rows[slots_[h.index].position] : nullptr;
+  }
+  const Row* find(Handle<Row> h) const {
+    return resolves(h) ? &groups_[slots_[h.index].group].rows[slots_[h.index].position] : nullptr;
+  }
+
+  std::span<Group> groups() { return groups_; }
+  std::span<const Group> groups() const { return groups_; }
+  std::size_t size() const { return size_; }
+  std::size_t overflow_size() const { return groups_[kOverflow].rows.size(); }
+  // Groups that hold at least one constraint, the overflow group included.
+  std::uint32_t non_empty_groups() const {
+    std::uint32_t n = 0;
+    for (const Group& g : groups_)
+      n += g.rows.empty() ? 0u : 1u;
+    return n;
+  }
+  // Bit c set: particle appears in a constraint of colour c (for validation).
+  std::uint32_t particle_colour_mask(std::uint32_t p) const {
+    return p < particle_colours_.size() ? particle_colours_[p] : 0u;
+  }
+
+  void reset_lambda() {
+    for (Group& g : groups_)
+      std::fill(g.lambda.begin(), g.lambda.end(), Real(0));
+  }
+
+ private:
+  struct Slot {
+    std::uint32_t group = 0, position = 0, generation = 0;
+    bool live = false;
+  };
+
+  void ensure_particle(std::uint32_t p) {
+    if (p >= particle_colours_.size()) particle_colours_.resize(std::size_t(p) + 1, 0u);
+  }
+  std::uint32_t allocate_slot() {
+    std::uint32_t slot;
+    if (!free_slots_.empty()) {
+      slot = free_slots_.back();
+      free_slots_.pop_back();
+    } else {
+      slot = static_cast<std::uint32_t>(slots_.size());
+      slots_.emplace_back();
+    }
+    slots_[slot].live = true;
+    return slot;
+  }
+
+  std::array<Group, kGroupCount> groups_;
+  std::vector<std::uint32_t> particle_colours_;
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> free_slots_;
+  std::size_t size_ = 0;
+};
+
+}  // namespace imasim::physics

@@ -1,0 +1,54 @@
+#pragma once
+// Distance constraint (eq. 2): C(p1, p2) = |p1 - p2| - d0.
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "physics/projection.hpp"
+
+namespace imasim::physics {
+
+struct DistanceRow {
+  std::uint32_t i = 0, j = 0;
+  Real rest_length = 0;  // d0 (unit: m)
+  MaterialId material = 0;
+  std::uint32_t slot = 0;  // back-reference for handle bookkeeping
+
+  std::array<std::uint32_t, 2> particles() const { return {i, j}; }
+};
+
+struct DistanceEval {
+  Real value = 0;  // C (unit: m)
+  Vec3 grad_i = Vec3::Zero(), grad_j = Vec3::Zero();
+  bool valid = false;  // false when the particles coincide (direction undefined)
+};
+
+inline DistanceEval evaluate_distance(const Vec3& pi, const Vec3& pj, Real rest_length) {
+  DistanceEval e;
+  const Vec3 d = pi - pj;
+  const Real len = d.norm();
+  e.value = len - rest_length;
+  if (!(len > Real(1e-12))) return e;
+  e.grad_i = d / len;
+  e.grad_j = -e.grad_i;
+  e.valid = true;
+  return e;
+}
+
+inline void project_distance(const DistanceRow& r, Real& lambda, const ProjectionContext& ctx) {
+  const Real wi = ctx.inverse_mass[r.i], wj = ctx.inverse_mass[r.j];
+  const Real w = wi + wj;
+  if (w == 0) return;
+  Vec3& pi = ctx.positions[r.i];
+  Vec3& pj = ctx.positions[r.j];
+  const Vec3 d = pi - pj;
+  const Real len = d.norm();
+  if (!(len > Real(1e-12))) return;
+  const Vec3 n = d / len;  // grad_i C = n, grad_j C = -n, |grad|^2 = 1 each
+  const Real dl = lambda_increment(ctx.terms[r.material], len - r.rest_length, w, lambda);
+  lambda += dl;
+  pi += (wi * dl) * n;
+  pj -= (wj * dl) * n;
+}
+
+}  // namespace imasim::physics

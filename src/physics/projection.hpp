@@ -1,0 +1,21 @@
+#pragma once
+// The shared XPBD/PBD projection step for one scalar constraint (see material.hpp).
+#include "math/types.hpp"
+#include "physics/material.hpp"
+
+namespace imasim::physics {
+
+// Particle positions, inverse masses and per-material projection terms for one substep.
+struct ProjectionContext {
+  Vec3* positions = nullptr;               // predicted positions p (unit: m)
+  const Real* inverse_mass = nullptr;      // (unit: 1/kg)
+  const ProjectionTerms* terms = nullptr;  // indexed by MaterialId
+};
+
+// Returns the multiplier increment for a constraint with value c and weighted gradient norm
+// w_grad2 = sum_i w_i |grad_i C|^2; lambda is the accumulated multiplier of this substep.
+inline Real lambda_increment(const ProjectionTerms& t, Real c, Real w_grad2, Real lambda) {
+  return (-t.scale * c - t.alpha_tilde * lambda) / (w_grad2 + t.alpha_tilde);
+}
+
+}  // namespace imasim::physics

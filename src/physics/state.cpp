@@ -1,0 +1,33 @@
+#include "physics/state.hpp"
+
+#include <span>
+
+#include "math/state_hash.hpp"
+
+namespace imasim::physics {
+
+namespace {
+
+template <class T>
+void grow(std::vector<T>& v, std::size_t n) {
+  if (v.size() < n) v.resize(n);
+}
+
+}  // namespace
+
+void prepare_state(const Model& model, State& state) {
+  const std::size_t n = state.particles.size();
+  StepScratch& s = state.scratch;
+  grow(s.saved_position, n);
+  grow(s.saved_velocity, n);
+  grow(s.projection_terms, model.materials.size());
+  grow(s.object_moments, model.objects.size());
+  grow(s.block_first_bad, (n + kParticleBlock - 1) / kParticleBlock);
+  grow(s.validation_stamp, n);
+}
+
+std::uint64_t position_hash(const State& state) {
+  return hash_span(std::span<const Vec3>(state.particles.position));
+}
+
+}  // namespace imasim::physics

@@ -1,0 +1,102 @@
+#include "physics/validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace imasim::physics {
+
+namespace {
+
+bool finite_nonnegative(Real x) {
+  return std::isfinite(x) && x >= 0;
+}
+
+// Checks one store; `stamp` starts at a value larger than any stamp used so far.
+template <class Row>
+std::string validate_store(const char* kind, const ColouredStore<Row>& store, const Model& model,
+                           std::size_t particle_count, std::vector<std::uint32_t>& marks,
+                           std::uint32_t& stamp) {
+  const auto groups = store.groups();
+  for (std::uint32_t g = 0; g < groups.size(); ++g) {
+    ++stamp;
+    const bool regular = g < ColouredStore<Row>::kColourCount;
+    for (const Row& row : groups[g].rows) {
+      if (row.material >= model.materials.size()) {
+        return std::string(kind) + " constraint refers to missing material " +
+               std::to_string(row.material);
+      }
+      for (std::uint32_t p : row.particles()) {
+        if (p >= particle_count) {
+          return std::string(kind) + " constraint refers to removed particle " + std::to_string(p);
+        }
+        if (!regular) continue;
+        if (marks[p] == stamp) {
+          return std::string(kind) + " colour " + std::to_string(g) + " holds particle " +
+                 std::to_string(p) + " twice";
+        }
+        marks[p] = stamp;
+        if ((store.particle_colour_mask(p) & (1u << g)) == 0) {
+          return std::string(kind) + " colour mask of particle " + std::to_string(p) +
+                 " misses colour " + std::to_string(g);
+        }
+      }
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string validate_model(const Model& model) {
+  const SolverParams& s = model.solver;
+  if (!(std::isfinite(s.dt) && s.dt > 0)) return "solver.dt must be a positive number of seconds";
+  if (s.substeps < 1) return "solver.substeps must be at least 1";
+  if (s.iterations < 1) return "solver.iterations must be at least 1";
+  if (!(std::isfinite(s.max_speed) && s.max_speed > 0)) return "solver.max_speed must be > 0";
+  if (model.objects.empty()) return "model has no object";
+  for (const ObjectParams& o : model.objects) {
+    if (!o.gravity.allFinite()) return "object '" + o.name + "': gravity must be finite";
+    if (!finite_nonnegative(o.linear_damping)) {
+      return "object '" + o.name + "': linear_damping must be >= 0";
+    }
+    if (!finite_nonnegative(o.angular_damping)) {
+      return "object '" + o.name + "': angular_damping must be >= 0";
+    }
+  }
+  for (std::size_t i = 0; i < model.materials.size(); ++i) {
+    const ConstraintMaterial& m = model.materials[i];
+    if (m.response == Response::xpbd && !finite_nonnegative(m.compliance)) {
+      return "material " + std::to_string(i) + ": compliance must be >= 0";
+    }
+    if (m.response == Response::pbd && !(m.pbd_stiffness >= 0 && m.pbd_stiffness <= 1)) {
+      return "material " + std::to_string(i) + ": PBD stiffness must be in [0, 1]";
+    }
+  }
+  return {};
+}
+
+std::string validate_state(const Model& model, State& state) {
+  const Particles& P = state.particles;
+  const std::size_t n = P.size();
+  if (P.predicted.size() != n || P.velocity.size() != n || P.rest_position.size() != n ||
+      P.inverse_mass.size() != n || P.object.size() != n) {
+    return "particle arrays differ in length";
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (P.object[i] >= model.objects.size()) {
+      return "particle " + std::to_string(i) + " belongs to missing object";
+    }
+  }
+  auto& marks = state.scratch.validation_stamp;
+  if (marks.size() < n) return "state not prepared (call prepare_state)";
+  std::fill(marks.begin(), marks.begin() + static_cast<std::ptrdiff_t>(n), 0u);
+  std::uint32_t stamp = 0;
+  const ConstraintSystem& cs = state.constraints;
+  std::string error = validate_store("distance", cs.distance, model, n, marks, stamp);
+  if (error.empty()) error = validate_store("dihedral", cs.dihedral, model, n, marks, stamp);
+  if (error.empty()) error = validate_store("attachment", cs.attachment, model, n, marks, stamp);
+  return error;
+}
+
+}  // namespace imasim::physics

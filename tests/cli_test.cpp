@@ -1,0 +1,74 @@
+// `imasim cloth` as a user runs it: the JSON contract, and clear errors for bad arguments.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct Outcome {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Outcome run_imasim(const std::string& args) {
+  const std::string command = std::string(IMASIM_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, ""};
+  std::string out;
+  std::array<char, 4096> buffer;
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr)
+    out += buffer.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+TEST(ClothCommand, PrintsTheJsonContract) {
+  const Outcome r = run_imasim("cloth --n 16 --steps 50 --threads 1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["particles"], 256);
+  EXPECT_EQ(j["distance_constraints"], 3 * 15 * 15 + 2 * 15);
+  EXPECT_EQ(j["dihedral_constraints"], 3 * 15 * 15 + 2 * 15 - 4 * 15);
+  EXPECT_GT(j["colours"].get<int>(), 0);
+  EXPECT_GT(j["center_sag_m"].get<double>(), 0.0);
+  EXPECT_GE(j["max_displacement_m"].get<double>(), j["center_sag_m"].get<double>());
+  EXPECT_GE(j["ms_per_step_median"].get<double>(), 0.0);
+  EXPECT_EQ(j["state_hash"].get<std::string>().size(), 16u);
+  EXPECT_EQ(j["finite"], true);
+}
+
+TEST(ClothCommand, SameHashForAnyThreadCount) {
+  const auto one =
+      nlohmann::json::parse(run_imasim("cloth --n 20 --steps 30 --threads 1 --json").output);
+  const auto two =
+      nlohmann::json::parse(run_imasim("cloth --n 20 --steps 30 --threads 2 --json").output);
+  EXPECT_EQ(one["state_hash"], two["state_hash"]);
+}
+
+TEST(ClothCommand, AcceptsXpbdCompliances) {
+  const Outcome r = run_imasim("cloth --n 10 --steps 20 --compliance 1e-4,2 --substeps 4 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(nlohmann::json::parse(r.output)["finite"], true);
+}
+
+TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {
+  struct Case {
+    const char* args;
+    const char* message;
+  };
+  for (const Case& c : {Case{"cloth --n 1", "--n"}, Case{"cloth --n abc", "--n"},
+                        Case{"cloth --pbd 2,0.1", "--pbd"}, Case{"cloth --pbd 1", "--pbd"},
+                        Case{"cloth --compliance -1,0", "--compliance"},
+                        Case{"cloth --pbd 1,0.1 --compliance 0,0", "excludes"},
+                        Case{"cloth --dt 0", "--dt"}, Case{"cloth --bogus", "bogus"}}) {
+    const Outcome r = run_imasim(c.args);
+    EXPECT_NE(r.exit_code, 0) << c.args;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << " -> " << r.output;
+  }
+}
+
+}  // namespace

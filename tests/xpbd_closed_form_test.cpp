@@ -1,0 +1,110 @@
+// The solver against closed-form answers: free fall, a particle hanging on one compliant
+// distance constraint (XPBD stretch = m g alpha), PBD's rigid projection, XPBD's
+// iteration-independent equilibrium.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "physics/constraint_system.hpp"
+#include "physics/executor.hpp"
+#include "physics/step.hpp"
+
+namespace imasim::physics {
+namespace {
+
+constexpr double kG = 9.81;
+
+struct Pendulum {
+  Model model;
+  State state;
+};
+
+// Particle 0 fixed at the origin, particle 1 of mass m hanging 1 m below on one constraint.
+Pendulum make_hanging_particle(double mass, const ConstraintMaterial& material,
+                               double linear_damping, std::uint32_t iterations) {
+  Pendulum p;
+  p.model.solver.iterations = iterations;
+  ObjectParams body;
+  body.linear_damping = linear_damping;
+  p.model.objects.push_back(body);
+  const MaterialId id = p.model.add_material(material);
+  p.state.particles.add(Vec3(0, 0, 0), 1, 0);
+  p.state.particles.fix(0);
+  p.state.particles.add(Vec3(0, -1, 0), mass, 0);
+  add_distance(p.state.constraints, p.state.particles, 0, 1, id);
+  prepare_state(p.model, p.state);
+  return p;
+}
+
+TEST(ClosedForm, FreeFallFollowsTheSymplecticPrediction) {
+  Model model;
+  model.objects.push_back({});
+  State state;
+  state.particles.add(Vec3(0, 2, 0), 0.1, 0);
+  Executor exec(1);
+  const double h = model.solver.dt;
+  for (int n = 1; n <= 200; ++n) {
+    ASSERT_TRUE(step(model, state, exec).ok());
+    // v_n = -g h n (mean velocity over step n), y_n = y_0 - g h^2 n (n + 1) / 2.
+    EXPECT_NEAR(state.particles.velocity[0].y(), -kG * h * n, 1e-12 * n);
+    EXPECT_NEAR(state.particles.position[0].y(), 2 - kG * h * h * n * (n + 1) / 2, 1e-12 * n);
+  }
+  EXPECT_NEAR(state.time, 200 * h, 1e-12);
+}
+
+TEST(ClosedForm, XpbdHangingParticleStretchesByMassTimesGravityTimesCompliance) {
+  for (const double alpha : {1e-4, 1e-3, 1e-2}) {
+    const double mass = 0.1;
+    Pendulum p = make_hanging_particle(mass, ConstraintMaterial::xpbd(alpha), 0.5, 5);
+    Executor exec(1);
+    for (int n = 0; n < 4000; ++n)
+      ASSERT_TRUE(step(p.model, p.state, exec).ok());
+    const double stretch =
+        (p.state.particles.position[1] - p.state.particles.position[0]).norm() - 1;
+    EXPECT_NEAR(stretch, mass * kG * alpha, 1e-9 * mass * kG * alpha + 1e-13) << "alpha " << alpha;
+    EXPECT_LT(p.state.particles.velocity[1].norm(), 1e-10);
+  }
+}
+
+TEST(ClosedForm, XpbdEquilibriumDoesNotDependOnIterationCount) {
+  const double alpha = 1e-3, mass = 0.2;
+  double stretch[2];
+  int k = 0;
+  for (const std::uint32_t iterations : {1u, 25u}) {
+    Pendulum p = make_hanging_particle(mass, ConstraintMaterial::xpbd(alpha), 1.0, iterations);
+    Executor exec(1);
+    for (int n = 0; n < 4000; ++n)
+      ASSERT_TRUE(step(p.model, p.state, exec).ok());
+    stretch[k++] = (p.state.particles.position[1] - p.state.particles.position[0]).norm() - 1;
+  }
+  EXPECT_NEAR(stretch[0], stretch[1], 1e-12);
+  EXPECT_NEAR(stretch[0], mass * kG * alpha, 1e-9);
+}
+
+TEST(ClosedForm, PbdStiffnessOneHoldsTheLengthExactly) {
+  Pendulum p = make_hanging_particle(0.1, ConstraintMaterial::pbd(1), 0, 1);
+  Executor exec(1);
+  for (int n = 0; n < 100; ++n) {
+    ASSERT_TRUE(step(p.model, p.state, exec).ok());
+    EXPECT_NEAR((p.state.particles.position[1] - p.state.particles.position[0]).norm(), 1, 1e-14);
+  }
+}
+
+TEST(ClosedForm, PbdStiffnessScalesOneProjection) {
+  // One projection removes the fraction k of the error: C' = (1 - k) C.
+  for (const double k : {0.0, 0.25, 1.0}) {
+    std::array<Vec3, 2> x = {Vec3(0, 0, 0), Vec3(0, -1.2, 0)};
+    const std::array<Real, 2> w = {0, 10};
+    const ProjectionTerms terms = projection_terms(ConstraintMaterial::pbd(k), 0.005);
+    DistanceRow row;
+    row.i = 0;
+    row.j = 1;
+    row.rest_length = 1;
+    Real lambda = 0;
+    project_distance(row, lambda, {x.data(), w.data(), &terms});
+    EXPECT_NEAR((x[1] - x[0]).norm() - 1, (1 - k) * 0.2, 1e-14) << "k " << k;
+  }
+}
+
+}  // namespace
+}  // namespace imasim::physics
