@@ -2,6 +2,8 @@
 // rest, fixed vertices never move, XPBD sag converges as substeps grow).
 #include <gtest/gtest.h>
 
+#include "precision.hpp"
+
 #include <cmath>
 
 #include "physics/executor.hpp"
@@ -39,7 +41,8 @@ TEST(ClothScene, MatchesItsContract) {
       if (P.is_fixed(static_cast<std::uint32_t>(i))) {
         ++fixed;
       } else {
-        EXPECT_DOUBLE_EQ(1 / P.inverse_mass[i], 3.0 / (n * n));  // eq. 5 over all N^2 vertices
+        // eq. 5 over all N^2 vertices
+        EXPECT_NEAR(1 / P.inverse_mass[i], 3.0 / (n * n), test::ulps(4, 3.0 / (n * n)));
       }
     }
     EXPECT_EQ(fixed, 4 * (n - 1));
@@ -49,11 +52,13 @@ TEST(ClothScene, MatchesItsContract) {
     for (std::uint32_t c : s.centre_particles) {
       mean += P.position[c] / double(s.centre_particles.size());
       // The centre particles are the vertices nearest the middle of the square.
-      EXPECT_NEAR(std::abs(P.position[c].x() - 1.0), n % 2 == 0 ? half_spacing : 0.0, 1e-12);
-      EXPECT_NEAR(std::abs(P.position[c].z() - 1.0), n % 2 == 0 ? half_spacing : 0.0, 1e-12);
+      EXPECT_NEAR(std::abs(P.position[c].x() - 1.0), n % 2 == 0 ? half_spacing : 0.0,
+                  test::ulps(2, 2));
+      EXPECT_NEAR(std::abs(P.position[c].z() - 1.0), n % 2 == 0 ? half_spacing : 0.0,
+                  test::ulps(2, 2));
     }
-    EXPECT_NEAR(mean.x(), 1.0, 1e-12);
-    EXPECT_NEAR(mean.z(), 1.0, 1e-12);
+    EXPECT_NEAR(mean.x(), 1.0, test::ulps(4, 2));
+    EXPECT_NEAR(mean.z(), 1.0, test::ulps(4, 2));
   }
 }
 
@@ -94,7 +99,10 @@ TEST(ClothScene, HangingClothComesToRestAndFixedVerticesNeverMove) {
     }
   }
   EXPECT_GT(peak, 1e-4);  // it did move
-  EXPECT_LT(kinetic_energy(s.state), 1e-12 * peak);
+  // At rest the velocities (p - x)/dt are the rounding of positions of about 1 m: the kinetic
+  // energy floor is 0.5 M (eps * 1 m / dt)^2, eight orders of magnitude below the peak.
+  const double v_noise = test::ulps(1, 1.0) / p.dt;
+  EXPECT_LT(kinetic_energy(s.state), 0.5 * p.mass * v_noise * v_noise);
   EXPECT_GT(centre_sag(s), 0.0);
 }
 
@@ -115,17 +123,19 @@ double xpbd_rest_sag(std::uint32_t substeps) {
 }
 
 TEST(ClothScene, XpbdSagConvergesAsSubstepsGrow) {
-  double sag[5];
-  for (int k = 0; k < 5; ++k)
+  // Up to 8 substeps (h = 0.625 ms). Beyond that, in float, the rounding of v = (p - x)/h at
+  // 1 m scale (about 2e-4 m/s) dominates the remaining change: docs/physics.md.
+  double sag[4];
+  for (int k = 0; k < 4; ++k)
     sag[k] = xpbd_rest_sag(1u << k);  // 1, 2, 4, 8, 16 substeps
   double previous_change = std::abs(sag[1] - sag[0]);
   EXPECT_GT(previous_change, 0.0);
-  for (int k = 2; k < 5; ++k) {
+  for (int k = 2; k < 4; ++k) {
     const double change = std::abs(sag[k] - sag[k - 1]);
     EXPECT_LT(change, previous_change) << "substeps " << (1 << k);
     previous_change = change;
   }
-  EXPECT_LT(previous_change, 0.01 * sag[4]);
+  EXPECT_LT(previous_change, 0.01 * sag[3]);
 }
 
 }  // namespace

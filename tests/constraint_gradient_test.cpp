@@ -11,17 +11,19 @@
 namespace imasim::physics {
 namespace {
 
+using V3 = Eigen::Vector3d;  // the constraint functions in double, for exact differences
+
 constexpr double kStep = 1e-6;
 constexpr double kTolerance = 1e-6;  // central differences: O(step^2) truncation + rounding
 
-Vec3 random_point(std::mt19937& rng) {
+V3 random_point(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  return Vec3(u(rng), u(rng), u(rng));
+  return V3(u(rng), u(rng), u(rng));
 }
 
 // d value / d x[k][axis] by central differences.
 template <std::size_t N, class F>
-double central_difference(std::array<Vec3, N> x, std::size_t k, int axis, const F& value) {
+double central_difference(std::array<V3, N> x, std::size_t k, int axis, const F& value) {
   x[k][axis] += kStep;
   const double plus = value(x);
   x[k][axis] -= 2 * kStep;
@@ -32,12 +34,12 @@ double central_difference(std::array<Vec3, N> x, std::size_t k, int axis, const 
 TEST(ConstraintGradient, DistanceMatchesFiniteDifferences) {
   std::mt19937 rng(1);
   for (int trial = 0; trial < 200; ++trial) {
-    const std::array<Vec3, 2> x = {random_point(rng), random_point(rng)};
+    const std::array<V3, 2> x = {random_point(rng), random_point(rng)};
     const double rest = 0.3;
     const DistanceEval e = evaluate_distance(x[0], x[1], rest);
     ASSERT_TRUE(e.valid);
-    const std::array<Vec3, 2> g = {e.grad_i, e.grad_j};
-    auto value = [&](const std::array<Vec3, 2>& y) {
+    const std::array<V3, 2> g = {e.grad_i, e.grad_j};
+    auto value = [&](const std::array<V3, 2>& y) {
       return evaluate_distance(y[0], y[1], rest).value;
     };
     for (std::size_t k = 0; k < 2; ++k) {
@@ -51,11 +53,11 @@ TEST(ConstraintGradient, DistanceMatchesFiniteDifferences) {
 TEST(ConstraintGradient, AttachmentMatchesFiniteDifferences) {
   std::mt19937 rng(2);
   for (int trial = 0; trial < 200; ++trial) {
-    const std::array<Vec3, 1> x = {random_point(rng)};
-    const Vec3 target = random_point(rng);
+    const std::array<V3, 1> x = {random_point(rng)};
+    const V3 target = random_point(rng);
     const AttachmentEval e = evaluate_attachment(x[0], target);
     ASSERT_TRUE(e.valid);
-    auto value = [&](const std::array<Vec3, 1>& y) {
+    auto value = [&](const std::array<V3, 1>& y) {
       return evaluate_attachment(y[0], target).value;
     };
     for (int a = 0; a < 3; ++a) {
@@ -68,14 +70,14 @@ TEST(ConstraintGradient, DihedralMatchesFiniteDifferences) {
   std::mt19937 rng(3);
   int checked = 0;
   for (int trial = 0; trial < 500; ++trial) {
-    const std::array<Vec3, 4> x = {random_point(rng), random_point(rng), random_point(rng),
-                                   random_point(rng)};
+    const std::array<V3, 4> x = {random_point(rng), random_point(rng), random_point(rng),
+                                 random_point(rng)};
     const double rest = 0.2;
     const DihedralEval e = evaluate_dihedral(x[0], x[1], x[2], x[3], rest);
     ASSERT_TRUE(e.valid);
     // Too close to the +-pi cut the difference quotient straddles the jump of the wrap.
     if (std::abs(e.value) > 3.0) continue;
-    auto value = [&](const std::array<Vec3, 4>& y) {
+    auto value = [&](const std::array<V3, 4>& y) {
       return evaluate_dihedral(y[0], y[1], y[2], y[3], rest).value;
     };
     // Relative tolerance: near-degenerate random triangles have large gradients.
@@ -94,10 +96,10 @@ TEST(ConstraintGradient, DihedralMatchesFiniteDifferences) {
 TEST(ConstraintGradient, DihedralGradientsAreTranslationAndRotationInvariant) {
   std::mt19937 rng(4);
   for (int trial = 0; trial < 100; ++trial) {
-    const std::array<Vec3, 4> x = {random_point(rng), random_point(rng), random_point(rng),
-                                   random_point(rng)};
+    const std::array<V3, 4> x = {random_point(rng), random_point(rng), random_point(rng),
+                                 random_point(rng)};
     const DihedralEval e = evaluate_dihedral(x[0], x[1], x[2], x[3], 0.0);
-    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    V3 force = V3::Zero(), torque = V3::Zero();
     for (std::size_t k = 0; k < 4; ++k) {
       force += e.grad[k];
       torque += x[k].cross(e.grad[k]);

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "precision.hpp"
+
 #include <stdexcept>
 
 #include "geometry/grid_rectangle.hpp"
@@ -23,7 +25,7 @@ TEST(GridRectangle, NormalsPointUpAndAreaAddsUp) {
     EXPECT_GT(n.y(), 0);
     area += 0.5 * n.norm();
   }
-  EXPECT_NEAR(area, 6.0, 1e-12);
+  EXPECT_NEAR(area, 6.0, test::ulps(4, 6.0));
 }
 
 TEST(GridRectangle, AlternatesTheDiagonals) {

@@ -17,17 +17,21 @@ struct AttachmentRow {
   std::array<std::uint32_t, 1> particles() const { return {i}; }
 };
 
+template <class S>
 struct AttachmentEval {
-  Real value = 0;  // C (unit: m)
-  Vec3 grad = Vec3::Zero();
+  using V = Eigen::Matrix<S, 3, 1>;
+  S value = 0;  // C (unit: m)
+  V grad = V::Zero();
   bool valid = false;  // false when p is on the target (C = 0, direction undefined)
 };
 
-inline AttachmentEval evaluate_attachment(const Vec3& p, const Vec3& target) {
-  AttachmentEval e;
-  const Vec3 d = p - target;
+template <class S>
+AttachmentEval<S> evaluate_attachment(const Eigen::Matrix<S, 3, 1>& p,
+                                      const Eigen::Matrix<S, 3, 1>& target) {
+  AttachmentEval<S> e;
+  const Eigen::Matrix<S, 3, 1> d = p - target;
   e.value = d.norm();
-  if (!(e.value > Real(1e-12))) return e;
+  if (!(e.value > S(1e-12))) return e;
   e.grad = d / e.value;
   e.valid = true;
   return e;

@@ -1,5 +1,6 @@
 #include "physics/constraint_system.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -40,7 +41,11 @@ DihedralHandle add_dihedral(ConstraintSystem& cs, const Particles& particles, st
   DihedralRow row;
   row.p = {w0, w1, a, b};
   const auto& x0 = particles.rest_position;
-  row.rest_angle = dihedral_angle(x0[w0], x0[w1], x0[a], x0[b]);
+  // Measured in double whatever Real is: the rest shape is set once and should be exact.
+  const double rest = dihedral_angle<double>(x0[w0].cast<double>(), x0[w1].cast<double>(),
+                                             x0[a].cast<double>(), x0[b].cast<double>());
+  row.rest_cos = static_cast<Real>(std::cos(rest));
+  row.rest_sin = static_cast<Real>(std::sin(rest));
   row.material = material;
   return cs.dihedral.add(row);
 }

@@ -11,7 +11,7 @@ void apply_linear_damping(const Model& model, State& state, Real h, const Execut
     any = any || o.linear_damping > 0;
   if (!any) return;
   Particles& P = state.particles;
-  exec.for_ranges(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
+  exec.for_chunks(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Real kl = model.objects[P.object[i]].linear_damping;
       P.velocity[i] /= Real(1) + kl * P.inverse_mass[i] * h;

@@ -17,18 +17,23 @@ struct DistanceRow {
   std::array<std::uint32_t, 2> particles() const { return {i, j}; }
 };
 
+// Value and gradient, for any scalar (tests check them in double against finite differences).
+template <class S>
 struct DistanceEval {
-  Real value = 0;  // C (unit: m)
-  Vec3 grad_i = Vec3::Zero(), grad_j = Vec3::Zero();
+  using V = Eigen::Matrix<S, 3, 1>;
+  S value = 0;  // C (unit: m)
+  V grad_i = V::Zero(), grad_j = V::Zero();
   bool valid = false;  // false when the particles coincide (direction undefined)
 };
 
-inline DistanceEval evaluate_distance(const Vec3& pi, const Vec3& pj, Real rest_length) {
-  DistanceEval e;
-  const Vec3 d = pi - pj;
-  const Real len = d.norm();
+template <class S>
+DistanceEval<S> evaluate_distance(const Eigen::Matrix<S, 3, 1>& pi,
+                                  const Eigen::Matrix<S, 3, 1>& pj, S rest_length) {
+  DistanceEval<S> e;
+  const Eigen::Matrix<S, 3, 1> d = pi - pj;
+  const S len = d.norm();
   e.value = len - rest_length;
-  if (!(len > Real(1e-12))) return e;
+  if (!(len > S(1e-12))) return e;
   e.grad_i = d / len;
   e.grad_j = -e.grad_i;
   e.valid = true;

@@ -2,6 +2,7 @@
 // Runs the solver's data-parallel loops on a fixed number of threads (a oneTBB task arena).
 // Work is split into disjoint index ranges whose results do not depend on how they are
 // scheduled, so a step gives bit-for-bit the same state for any thread count.
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 
@@ -29,17 +30,25 @@ class Executor {
     }
   }
 
-  // Calls body(begin, end) over disjoint ranges covering [0, n). Ranges below 2 * grain run
-  // inline on the calling thread. Call from inside run().
+  // Calls body(begin, end) over the fixed chunks [c * chunk, min(n, (c + 1) * chunk)) that
+  // cover [0, n), in parallel. The chunk boundaries do not depend on the thread count, so every
+  // index is processed by the same code path (vectorised body or scalar tail, with the same
+  // floating-point contraction) whatever the number of threads: results are bit-identical.
+  // Call from inside run().
   template <class Body>
-  void for_ranges(std::size_t n, std::size_t grain, const Body& body) const {
-    if (!arena_ || n < 2 * grain) {
-      if (n > 0) body(std::size_t(0), n);
+  void for_chunks(std::size_t n, std::size_t chunk, const Body& body) const {
+    const std::size_t chunks = (n + chunk - 1) / chunk;
+    auto run_chunks = [&](std::size_t c0, std::size_t c1) {
+      for (std::size_t c = c0; c < c1; ++c)
+        body(c * chunk, std::min(n, (c + 1) * chunk));
+    };
+    if (!arena_ || chunks < 2) {
+      run_chunks(0, chunks);
       return;
     }
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n, grain),
-        [&body](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); },
+        tbb::blocked_range<std::size_t>(0, chunks),
+        [&](const tbb::blocked_range<std::size_t>& r) { run_chunks(r.begin(), r.end()); },
         tbb::static_partitioner());
   }
 

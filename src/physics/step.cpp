@@ -23,15 +23,15 @@ const char* to_string(StepStatus status) {
 
 namespace {
 
-// Smallest colour group worth splitting across threads (rows per task, at least).
-constexpr std::size_t kConstraintGrain = 1024;
+// Rows per chunk of a colour group (the unit of parallel work).
+constexpr std::size_t kConstraintChunk = 512;
 
 // Predict (eq. 1). The stored velocity is PBD's step-mean velocity (x(t) - x(t-h)) / h, which
 // under constant acceleration equals v(t) - a h / 2. Substituting v(t) in eq. 1 gives
 //   x* = x + (v + a h) h,
 // the symplectic-Euler prediction, exact in free fall for the mean velocity.
 void predict(const Model& model, Particles& P, Real h, const Executor& exec) {
-  exec.for_ranges(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
+  exec.for_chunks(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       if (P.inverse_mass[i] == 0) {
         P.velocity[i].setZero();
@@ -52,7 +52,7 @@ void project_store(ColouredStore<Row>& store, const ProjectionContext& ctx, cons
     auto& group = groups[g];
     const Row* rows = group.rows.data();
     Real* lambda = group.lambda.data();
-    exec.for_ranges(group.rows.size(), kConstraintGrain, [&](std::size_t begin, std::size_t end) {
+    exec.for_chunks(group.rows.size(), kConstraintChunk, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k)
         project(rows[k], lambda[k], ctx);
     });
@@ -70,20 +70,15 @@ std::uint32_t update_velocities(State& state, Real h, Real max_speed, const Exec
   auto& first_bad = state.scratch.block_first_bad;
   const std::size_t blocks = (P.size() + kParticleBlock - 1) / kParticleBlock;
   const Real limit2 = max_speed * max_speed;
-  exec.for_ranges(blocks, 1, [&](std::size_t b0, std::size_t b1) {
-    for (std::size_t b = b0; b < b1; ++b) {
-      std::uint32_t bad = kInvalidIndex;
-      const std::size_t end = std::min(P.size(), (b + 1) * kParticleBlock);
-      for (std::size_t i = b * kParticleBlock; i < end; ++i) {
-        const Vec3 v = (P.predicted[i] - P.position[i]) / h;
-        if (!(v.squaredNorm() <= limit2) && bad == kInvalidIndex) {
-          bad = static_cast<std::uint32_t>(i);
-        }
-        P.velocity[i] = v;
-        P.position[i] = P.predicted[i];
-      }
-      first_bad[b] = bad;
+  exec.for_chunks(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
+    std::uint32_t bad = kInvalidIndex;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3 v = (P.predicted[i] - P.position[i]) / h;
+      if (!(v.squaredNorm() <= limit2) && bad == kInvalidIndex) bad = static_cast<std::uint32_t>(i);
+      P.velocity[i] = v;
+      P.position[i] = P.predicted[i];
     }
+    first_bad[begin / kParticleBlock] = bad;
   });
   for (std::size_t b = 0; b < blocks; ++b) {
     if (first_bad[b] != kInvalidIndex) return first_bad[b];
@@ -118,9 +113,16 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       ConstraintSystem& cs = state.constraints;
       cs.reset_lambda();
       for (std::uint32_t it = 0; it < solver.iterations; ++it) {
-        project_store(cs.distance, ctx, exec, project_distance);
-        project_store(cs.dihedral, ctx, exec, project_dihedral);
-        project_store(cs.attachment, ctx, exec, project_attachment);
+        // Lambdas (not function pointers) so that each projection inlines into its loop.
+        project_store(cs.distance, ctx, exec, [](const DistanceRow& r, Real& l, const auto& c) {
+          project_distance(r, l, c);
+        });
+        project_store(cs.dihedral, ctx, exec, [](const DihedralRow& r, Real& l, const auto& c) {
+          project_dihedral(r, l, c);
+        });
+        project_store(cs.attachment, ctx, exec, [](const AttachmentRow& r, Real& l, const auto& c) {
+          project_attachment(r, l, c);
+        });
       }
       const std::uint32_t bad = update_velocities(state, h, solver.max_speed, exec);
       if (bad != kInvalidIndex) {
