@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "physics/damping.hpp"
+#include "physics/dihedral_batch.hpp"
 #include "physics/validation.hpp"
 
 namespace imasim::physics {
@@ -44,16 +45,23 @@ void predict(const Model& model, Particles& P, Real h, const Executor& exec) {
   });
 }
 
-template <class Row, class Project>
+// Projects every colour group of a store, each in parallel over fixed chunks, then the overflow
+// group serially. Within a chunk, Batch::size rows at a time go through Batch::project (SIMD,
+// one row per lane) and the rest through project; chunks are multiples of the batch size, so a
+// row's path does not depend on the thread count.
+template <class Row, class Project, class BatchProject>
 void project_store(ColouredStore<Row>& store, const ProjectionContext& ctx, const Executor& exec,
-                   Project project) {
+                   Project project, std::size_t batch, BatchProject project_batch) {
   auto groups = store.groups();
   for (std::uint32_t g = 0; g < ColouredStore<Row>::kColourCount; ++g) {
     auto& group = groups[g];
     const Row* rows = group.rows.data();
     Real* lambda = group.lambda.data();
     exec.for_chunks(group.rows.size(), kConstraintChunk, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t k = begin; k < end; ++k)
+      std::size_t k = begin;
+      for (; batch > 1 && k + batch <= end; k += batch)
+        project_batch(rows + k, lambda + k, ctx);
+      for (; k < end; ++k)
         project(rows[k], lambda[k], ctx);
     });
   }
@@ -62,6 +70,9 @@ void project_store(ColouredStore<Row>& store, const ProjectionContext& ctx, cons
     project(overflow.rows[k], overflow.lambda[k], ctx);
   }
 }
+
+constexpr auto kNoBatch = [](const auto*, Real*, const ProjectionContext&) {};
+static_assert(kConstraintChunk % kDihedralBatch == 0);
 
 // v = (p - x) / h, then x = p. Returns the first particle whose velocity is non-finite or
 // faster than max_speed, or kInvalidIndex. Blocks are fixed, so the answer is thread-independent.
@@ -114,15 +125,19 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       cs.reset_lambda();
       for (std::uint32_t it = 0; it < solver.iterations; ++it) {
         // Lambdas (not function pointers) so that each projection inlines into its loop.
-        project_store(cs.distance, ctx, exec, [](const DistanceRow& r, Real& l, const auto& c) {
-          project_distance(r, l, c);
-        });
-        project_store(cs.dihedral, ctx, exec, [](const DihedralRow& r, Real& l, const auto& c) {
-          project_dihedral(r, l, c);
-        });
-        project_store(cs.attachment, ctx, exec, [](const AttachmentRow& r, Real& l, const auto& c) {
-          project_attachment(r, l, c);
-        });
+        project_store(
+            cs.distance, ctx, exec,
+            [](const DistanceRow& r, Real& l, const auto& c) { project_distance(r, l, c); }, 1,
+            kNoBatch);
+        project_store(
+            cs.dihedral, ctx, exec,
+            [](const DihedralRow& r, Real& l, const auto& c) { project_dihedral(r, l, c); },
+            kDihedralBatch,
+            [](const DihedralRow* r, Real* l, const auto& c) { project_dihedral_batch(r, l, c); });
+        project_store(
+            cs.attachment, ctx, exec,
+            [](const AttachmentRow& r, Real& l, const auto& c) { project_attachment(r, l, c); }, 1,
+            kNoBatch);
       }
       const std::uint32_t bad = update_velocities(state, h, solver.max_speed, exec);
       if (bad != kInvalidIndex) {
