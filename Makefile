@@ -17,7 +17,7 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	$(BUILD)/apps/imasim cloth --n 64
+	$(BUILD)/apps/imasim/imasim cloth --n 64
 
 format-check: deps
 	bash scripts/check-format.sh

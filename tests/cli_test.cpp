@@ -55,16 +55,29 @@ TEST(ClothCommand, AcceptsXpbdCompliances) {
   EXPECT_EQ(nlohmann::json::parse(r.output)["finite"], true);
 }
 
+TEST(ClothCommand, ReportsARefusedStepWithExitCodeThree) {
+  // The sagging cloth moves faster than 1 mm/s within a few steps: the guard refuses the step.
+  const Outcome r = run_imasim("cloth --n 8 --steps 50 --max-speed 0.001 --json");
+  ASSERT_EQ(r.exit_code, 3) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["status"], "speed_limit");
+  EXPECT_EQ(j["finite"], true);
+  EXPECT_LT(j["failed_step"].get<int>(), 50);
+  EXPECT_EQ(j["steps"], j["failed_step"]);
+  EXPECT_LT(j["failed_particle"].get<int>(), 64);
+}
+
 TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {
   struct Case {
     const char* args;
     const char* message;
   };
-  for (const Case& c : {Case{"cloth --n 1", "--n"}, Case{"cloth --n abc", "--n"},
-                        Case{"cloth --pbd 2,0.1", "--pbd"}, Case{"cloth --pbd 1", "--pbd"},
-                        Case{"cloth --compliance -1,0", "--compliance"},
-                        Case{"cloth --pbd 1,0.1 --compliance 0,0", "excludes"},
-                        Case{"cloth --dt 0", "--dt"}, Case{"cloth --bogus", "bogus"}}) {
+  for (const Case& c :
+       {Case{"cloth --n 1", "--n"}, Case{"cloth --n abc", "--n"},
+        Case{"cloth --pbd 2,0.1", "--pbd"}, Case{"cloth --pbd 1", "--pbd"},
+        Case{"cloth --compliance -1,0", "--compliance"},
+        Case{"cloth --pbd 1,0.1 --compliance 0,0", "excludes"}, Case{"cloth --dt 0", "--dt"},
+        Case{"cloth --max-speed 0", "--max-speed"}, Case{"cloth --bogus", "bogus"}}) {
     const Outcome r = run_imasim(c.args);
     EXPECT_NE(r.exit_code, 0) << c.args;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << " -> " << r.output;

@@ -34,43 +34,41 @@ scene::ClothScene small_cloth() {
   return scene::make_cloth_scene(p);
 }
 
-TEST(StepGuard, SpeedLimitFailsTheStepAndKeepsTheState) {
-  scene::ClothScene s = small_cloth();
-  Executor exec(1);
-  for (int n = 0; n < 20; ++n)
-    ASSERT_TRUE(step(s.model, s.state, exec).ok());
+// Steps `warmup` times with the scene's own model, then once with `bad`, which must be refused
+// with `expected` and leave the state exactly as it was.
+StepResult expect_refused(scene::ClothScene& s, int threads, int warmup, const Model& bad,
+                          StepStatus expected) {
+  Executor exec(threads);
+  for (int n = 0; n < warmup; ++n)
+    EXPECT_TRUE(step(s.model, s.state, exec).ok());
   const Snapshot before = snapshot(s.state);
-  Model strict = s.model;
-  strict.solver.max_speed = 1e-4;  // the sagging cloth moves faster than this
-  const StepResult r = step(strict, s.state, exec);
-  EXPECT_EQ(r.status, StepStatus::speed_limit);
-  EXPECT_LT(r.particle, s.state.particles.size());
+  const StepResult r = step(bad, s.state, exec);
+  EXPECT_EQ(r.status, expected);
   expect_unchanged(before, s.state);
   EXPECT_TRUE(step(s.model, s.state, exec).ok());  // and the state is still usable
+  return r;
+}
+
+TEST(StepGuard, SpeedLimitFailsTheStepAndKeepsTheState) {
+  scene::ClothScene s = small_cloth();
+  Model strict = s.model;
+  strict.solver.max_speed = 1e-4;  // the sagging cloth moves faster than this
+  const StepResult r = expect_refused(s, 1, 20, strict, StepStatus::speed_limit);
+  EXPECT_LT(r.particle, s.state.particles.size());
 }
 
 TEST(StepGuard, NonFiniteValuesFailTheStepAndKeepTheState) {
   scene::ClothScene s = small_cloth();
-  Executor exec(2);
-  for (int n = 0; n < 5; ++n)
-    ASSERT_TRUE(step(s.model, s.state, exec).ok());
-  const Snapshot before = snapshot(s.state);
   Model broken = s.model;
   broken.objects[0].gravity.y() = std::numeric_limits<double>::quiet_NaN();
-  const StepResult r = step(broken, s.state, exec);
-  EXPECT_EQ(r.status, StepStatus::non_finite);
-  EXPECT_EQ(r.substep, 0u);
-  expect_unchanged(before, s.state);
+  EXPECT_EQ(expect_refused(s, 2, 5, broken, StepStatus::non_finite).substep, 0u);
 }
 
 TEST(StepGuard, InfiniteGravityIsReportedNotThrown) {
   scene::ClothScene s = small_cloth();
-  Executor exec(1);
   Model broken = s.model;
   broken.objects[0].gravity.y() = -std::numeric_limits<double>::infinity();
-  const Snapshot before = snapshot(s.state);
-  EXPECT_EQ(step(broken, s.state, exec).status, StepStatus::non_finite);
-  expect_unchanged(before, s.state);
+  expect_refused(s, 1, 0, broken, StepStatus::non_finite);
 }
 
 }  // namespace

@@ -37,6 +37,9 @@ std::shared_ptr<ClothOptions> add_cloth_command(CLI::App& app) {
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
+  cmd->add_option("--max-speed", p.max_speed, "Divergence guard: fastest allowed particle (m/s)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--damping", p.linear_damping, "Linear damping k_l of eq. 4 (kg/s)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -106,7 +109,9 @@ int run_cloth_command(const ClothOptions& options) {
   out["max_displacement_m"] = scene::max_displacement(s);
   out["ms_per_step_median"] = median;
   out["state_hash"] = to_hex(physics::position_hash(s));
-  out["finite"] = finite && failure.ok();
+  // A refused step leaves the state as it was before it, so positions stay finite; `finite`
+  // says whether the simulation itself produced only finite values.
+  out["finite"] = finite && failure.status != physics::StepStatus::non_finite;
   out["status"] = physics::to_string(failure.status);
   if (!failure.ok()) {
     out["failed_step"] = steps_done;

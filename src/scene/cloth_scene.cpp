@@ -29,6 +29,7 @@ ClothScene make_cloth_scene(const ClothParams& p) {
   model.solver.dt = p.dt;
   model.solver.iterations = p.iterations;
   model.solver.substeps = p.substeps;
+  model.solver.max_speed = p.max_speed;
   physics::ObjectParams cloth;
   cloth.name = "cloth";
   cloth.linear_damping = p.linear_damping;

@@ -19,6 +19,7 @@ struct ClothParams {
   Real dt = Real(0.005);         // (unit: s)
   std::uint32_t iterations = 5;  // projection sweeps per substep
   std::uint32_t substeps = 1;
+  Real max_speed = 50;      // divergence guard (unit: m/s)
   Real linear_damping = 0;  // eq. 4's k_l (unit: kg/s)
   physics::Response response = physics::Response::pbd;
   Real pbd_distance_stiffness = 1;          // [0, 1]
