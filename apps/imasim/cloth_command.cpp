@@ -121,8 +121,10 @@ int run_cloth_command(const ClothOptions& options) {
   if (options.json) {
     std::cout << out.dump() << '\n';
   } else {
-    for (const auto& [key, value] : out.items())
-      std::cout << key << ": " << value << '\n';
+    for (const auto& [key, value] : out.items()) {
+      std::cout << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump())
+                << '\n';
+    }
   }
   return failure.ok() ? 0 : 3;
 }
