@@ -7,7 +7,8 @@ declare -A allowed=(
   [math]="math"
   [geometry]="geometry math"
   [physics]="physics geometry math"
-  [scene]="scene physics geometry math"
+  [tissue]="tissue physics geometry math"
+  [scene]="scene tissue physics geometry math"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

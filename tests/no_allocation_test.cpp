@@ -10,6 +10,8 @@
 #include "physics/executor.hpp"
 #include "physics/step.hpp"
 #include "scene/cloth_scene.hpp"
+#include "tissue/thoracic_patch.hpp"
+#include "tissue/tissue_step.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t);
@@ -97,6 +99,22 @@ TEST(NoAllocation, StepDoesNotAllocateOnOneThread) {
 
 TEST(NoAllocation, StepDoesNotAllocateOnTwoThreads) {
   EXPECT_EQ(allocations_during_steps(2, physics::Response::pbd), 0);
+}
+
+TEST(NoAllocation, TissueStepDoesNotAllocate) {
+  for (const int threads : {1, 2}) {
+    tissue::ThoracicPatch patch =
+        tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
+    physics::Executor exec(threads);
+    for (int n = 0; n < 5; ++n)
+      EXPECT_TRUE(tissue::step_tissue(patch.world, exec).ok());
+    g_allocations = 0;
+    g_counting = true;
+    for (int n = 0; n < 20; ++n)
+      EXPECT_TRUE(tissue::step_tissue(patch.world, exec).ok());
+    g_counting = false;
+    EXPECT_EQ(g_allocations.load(), 0) << threads << " threads";
+  }
 }
 
 }  // namespace

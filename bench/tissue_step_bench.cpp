@@ -1,0 +1,55 @@
+// BM_TissueStep: one 5 ms step of the default thoracic-wall patch (fascia, IMA coarse + fine,
+// IMA and fascia fat strands, chest wall, couplings), on 1 or 2 threads.
+// BM_StrandGeneration: generating the fascia-to-wall strands of that patch.
+#include <benchmark/benchmark.h>
+
+#include "physics/executor.hpp"
+#include "tissue/thoracic_patch.hpp"
+#include "tissue/tissue_step.hpp"
+
+namespace {
+
+using namespace imasim;
+
+void BM_TissueStep(benchmark::State& bench) {
+  tissue::ThoracicPatch patch =
+      tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
+  physics::Executor exec(static_cast<int>(bench.range(0)));
+  for (auto _ : bench) {
+    if (!tissue::step_tissue(patch.world, exec).ok()) {
+      bench.SkipWithError("step diverged");
+      break;
+    }
+  }
+  bench.counters["particles"] = static_cast<double>(patch.world.state.particles.size());
+}
+BENCHMARK(BM_TissueStep)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_StrandGeneration(benchmark::State& bench) {
+  const tissue::ThoracicPatchParams params = tissue::default_thoracic_patch_params();
+  tissue::ThoracicPatch patch = tissue::make_thoracic_patch(params);
+  const tissue::TissueWorld& w = patch.world;
+  auto mesh_of = [&](std::uint32_t index) {
+    const tissue::MeshObject& m = w.meshes[index];
+    geometry::TriangleMesh mesh;
+    const auto x = tissue::mesh_positions(w, m);
+    mesh.vertices.assign(x.begin(), x.end());
+    mesh.triangles = m.triangles;
+    return mesh;
+  };
+  const geometry::TriangleMesh fascia = mesh_of(patch.fascia), wall = mesh_of(patch.wall);
+  std::size_t strands = 0;
+  for (auto _ : bench) {
+    strands = tissue::generate_strands(fascia, wall, params.fascia_fat.generation).strands.size();
+    benchmark::DoNotOptimize(strands);
+  }
+  bench.counters["strands"] = static_cast<double>(strands);
+}
+BENCHMARK(BM_StrandGeneration)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,52 @@
+#include "tissue/coupling.hpp"
+
+#include <limits>
+
+#include "geometry/uniform_grid.hpp"
+
+namespace imasim::tissue {
+
+void apply_coupling(const OffsetCoupling& c, physics::Particles& P) {
+  for (const auto& [j, i] : c.pairs) {
+    if (!c.active) {  // eq. 9, beta = 0
+      P.position[i] = P.rest_position[i] + c.decay * (P.position[i] - P.rest_position[i]);
+      continue;
+    }
+    const Vec3 offset = P.position[j] - P.rest_position[j];  // O_j
+    const Real len = offset.norm();
+    // eq. 8 (and eq. 9, beta = 1): direction of O_j, length clamped to lambda_max.
+    P.position[i] = len > c.lambda_max ? Vec3(P.rest_position[i] + (c.lambda_max / len) * offset)
+                                       : Vec3(P.rest_position[i] + offset);
+  }
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> nearest_source_pairs(
+    const physics::Particles& P, const std::vector<std::uint32_t>& sources,
+    const std::vector<std::uint32_t>& destinations, Real radius) {
+  std::vector<geometry::Box> boxes;
+  boxes.reserve(sources.size());
+  for (std::uint32_t s : sources)
+    boxes.emplace_back(P.rest_position[s]);
+  const geometry::UniformGrid grid(boxes, radius);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  std::vector<std::uint32_t> visited;
+  std::uint32_t stamp = 0;
+  for (std::uint32_t d : destinations) {
+    const Vec3& x = P.rest_position[d];
+    Real best = radius * radius;
+    std::uint32_t best_source = std::numeric_limits<std::uint32_t>::max();
+    grid.visit(geometry::Box(x - Vec3::Constant(radius), x + Vec3::Constant(radius)), visited,
+               stamp, [&](std::uint32_t k) {
+                 const Real d2 = (P.rest_position[sources[k]] - x).squaredNorm();
+                 if (d2 < best || (d2 == best && sources[k] < best_source)) {
+                   best = d2;
+                   best_source = sources[k];
+                 }
+               });
+    if (best_source != std::numeric_limits<std::uint32_t>::max())
+      pairs.emplace_back(best_source, d);
+  }
+  return pairs;
+}
+
+}  // namespace imasim::tissue

@@ -1,0 +1,47 @@
+#pragma once
+// Adding a simulated triangle surface to the world: particles with uniform mass (eq. 5),
+// distance constraints on edges (eq. 2) and dihedral constraints on interior edges (eq. 3).
+#include <string>
+
+#include "math/pose.hpp"
+#include "tissue/tissue_world.hpp"
+
+namespace imasim::tissue {
+
+struct MeshObjectParams {
+  std::string name;
+  Real total_mass = Real(0.01);  // M_total of eq. 5 (unit: kg)
+  bool gravity = true;
+  Real linear_damping = 0;   // k_l of eq. 4 (unit: kg/s)
+  Real angular_damping = 0;  // k_c of eq. 4 (unit: kg*m^2/s)
+  physics::ConstraintMaterial stretch = physics::ConstraintMaterial::xpbd(0);
+  physics::ConstraintMaterial bend = physics::ConstraintMaterial::xpbd(1);
+  bool is_static = false;  // every particle fixed, no constraints (the support structure)
+};
+
+// Returns the index of the new mesh object in world.meshes. Throws std::invalid_argument for a
+// non-manifold mesh or bad parameters. Set-up only.
+std::uint32_t add_mesh_object(TissueWorld& world, const geometry::TriangleMesh& mesh,
+                              const MeshObjectParams& params);
+
+// Adds an object (gravity per the flag) and returns its id.
+physics::ObjectId add_object(physics::Model& model, const std::string& name, bool gravity,
+                             Real linear_damping, Real angular_damping);
+
+// Particles of a mesh object as a span of positions.
+inline std::span<const Vec3> mesh_positions(const TissueWorld& w, const MeshObject& m) {
+  return {w.state.particles.position.data() + m.first_particle, m.particle_count};
+}
+
+// Fascia superficialis (2.3.1): a w x h rectangle on an nx x ny grid, placed by `pose` (the
+// rectangle's own frame has it in the x-z plane with normals along +y), perimeter fixed.
+struct FasciaParams {
+  Real width = Real(0.04), height = Real(0.15);  // (unit: m)
+  std::uint32_t nx = 12, ny = 40;
+  Pose pose;
+  MeshObjectParams object;
+};
+FasciaParams default_fascia_params();
+std::uint32_t add_fascia(TissueWorld& world, const FasciaParams& params);
+
+}  // namespace imasim::tissue

@@ -1,0 +1,131 @@
+#include "tissue/strands.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "geometry/uniform_grid.hpp"
+#include "physics/constraint_system.hpp"
+#include "tissue/mesh_object.hpp"
+
+namespace imasim::tissue {
+
+namespace {
+
+physics::ObjectId add_object_for_strands(TissueWorld& world, const StrandSetParams& p) {
+  return add_object(world.model, p.name, p.gravity, p.linear_damping, 0);
+}
+
+geometry::TriangleMesh current_mesh(const TissueWorld& w, const MeshObject& m) {
+  geometry::TriangleMesh mesh;
+  const auto x = mesh_positions(w, m);
+  mesh.vertices.assign(x.begin(), x.end());
+  mesh.triangles = m.triangles;
+  return mesh;
+}
+
+// Neighbours of each interior particle within `radius` at rest (CSR over the set's particles).
+void build_neighbours(StrandSet& set, const physics::Particles& P) {
+  const std::uint32_t count = set.particle_count();
+  std::vector<geometry::Box> boxes;
+  boxes.reserve(count);
+  for (std::uint32_t k = 0; k < count; ++k)
+    boxes.emplace_back(P.rest_position[set.first_particle + k]);
+  const geometry::UniformGrid grid(boxes, set.xsph_radius);
+  std::vector<std::uint32_t> visited;
+  std::uint32_t stamp = 0;
+  const std::uint32_t per = set.segments + 1;
+  set.neighbour_start.assign(1, 0u);
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const bool interior = k % per != 0 && k % per != set.segments;
+    if (interior) {
+      const Vec3& x = P.rest_position[set.first_particle + k];
+      const Vec3 r = Vec3::Constant(set.xsph_radius);
+      std::vector<std::uint32_t> found;
+      grid.visit(geometry::Box(x - r, x + r), visited, stamp, [&](std::uint32_t j) {
+        const bool j_interior = j % per != 0 && j % per != set.segments;
+        if (j != k && j_interior &&
+            (P.rest_position[set.first_particle + j] - x).squaredNorm() <
+                set.xsph_radius * set.xsph_radius) {
+          found.push_back(j);
+        }
+      });
+      std::sort(found.begin(), found.end());  // grid order must not leak into the sums
+      set.neighbours.insert(set.neighbours.end(), found.begin(), found.end());
+    }
+    set.neighbour_start.push_back(static_cast<std::uint32_t>(set.neighbours.size()));
+  }
+}
+
+}  // namespace
+
+std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_t mesh_b,
+                          const StrandSetParams& p) {
+  if (mesh_a >= world.meshes.size() || mesh_b >= world.meshes.size() || mesh_a == mesh_b) {
+    throw std::invalid_argument(p.name + ": strands need two different mesh objects");
+  }
+  if (!(p.diameter > 0) || !(p.total_mass > 0) || !(p.xsph_radius > 0) ||
+      !(p.xsph_coefficient >= 0 && p.xsph_coefficient <= 1)) {
+    throw std::invalid_argument(p.name +
+                                ": diameter, total_mass and xsph_radius must be > 0, "
+                                "xsph_coefficient in [0, 1]");
+  }
+  const StrandGeneration gen =
+      generate_strands(current_mesh(world, world.meshes[mesh_a]),
+                       current_mesh(world, world.meshes[mesh_b]), p.generation);
+  StrandSet set;
+  set.name = p.name;
+  set.object = add_object_for_strands(world, p);
+  set.mesh_a = mesh_a;
+  set.mesh_b = mesh_b;
+  set.segments = p.generation.segments;
+  set.strand_count = static_cast<std::uint32_t>(gen.strands.size());
+  set.xsph_coefficient = p.xsph_coefficient;
+  set.xsph_radius = p.xsph_radius;
+  physics::Particles& P = world.state.particles;
+  set.first_particle = static_cast<std::uint32_t>(P.size());
+  const std::uint32_t n = set.segments;
+  const Real interior_count = Real(std::max<std::size_t>(1, gen.strands.size() * (n - 1)));
+  const Real particle_mass = p.total_mass / interior_count;
+  const physics::MaterialId material = world.model.add_material(p.material);
+  for (const GeneratedStrand& g : gen.strands) {
+    for (std::uint32_t k = 0; k <= n; ++k) {
+      const Real t = Real(k) / Real(n);
+      const std::uint32_t i = P.add((1 - t) * g.start + t * g.end, particle_mass, set.object);
+      if (k == 0 || k == n) P.fix(i);  // ends ride on their surfaces
+      if (k > 0) physics::add_distance(world.state.constraints, P, i - 1, i, material);
+      set.diameter.push_back(p.diameter);
+    }
+    set.end_a.push_back({g.face_a, g.bary_a, 0});
+    set.end_b.push_back({g.face_b, g.bary_b, 0});
+    set.face_a.push_back(g.face_a);
+  }
+  build_neighbours(set, P);
+  world.strands.push_back(std::move(set));
+  world.xsph_scratch.resize(P.size());
+  return static_cast<std::uint32_t>(world.strands.size() - 1);
+}
+
+std::vector<std::uint32_t> interior_particles(const StrandSet& set) {
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t s = 0; s < set.strand_count; ++s) {
+    for (std::uint32_t k = 1; k < set.segments; ++k)
+      out.push_back(set.particle(s, k));
+  }
+  return out;
+}
+
+void place_strand_ends(TissueWorld& world) {
+  physics::Particles& P = world.state.particles;
+  for (const StrandSet& set : world.strands) {
+    const MeshObject& a = world.meshes[set.mesh_a];
+    const MeshObject& b = world.meshes[set.mesh_b];
+    for (std::uint32_t s = 0; s < set.strand_count; ++s) {
+      P.position[set.particle(s, 0)] =
+          geometry::bound_point(set.end_a[s], mesh_positions(world, a), a.normals, a.triangles);
+      P.position[set.particle(s, set.segments)] =
+          geometry::bound_point(set.end_b[s], mesh_positions(world, b), b.normals, b.triangles);
+    }
+  }
+}
+
+}  // namespace imasim::tissue

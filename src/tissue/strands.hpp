@@ -1,0 +1,34 @@
+#pragma once
+// Connective-tissue strands in the world (2.3.4): generated between two mesh objects, each strand
+// a chain of n distance constraints (eq. 2) over n + 1 particles whose two ends are kinematic and
+// ride on their surfaces through barycentric bindings.
+#include <string>
+
+#include "tissue/strand_generator.hpp"
+#include "tissue/tissue_world.hpp"
+
+namespace imasim::tissue {
+
+struct StrandSetParams {
+  std::string name = "fat";
+  StrandParams generation;
+  Real diameter = Real(1.5e-3);  // drawn particle diameter (unit: m)
+  Real total_mass = Real(0.02);  // spread over the interior particles (unit: kg)
+  bool gravity = true;
+  Real linear_damping = Real(0.03);  // (unit: kg/s)
+  physics::ConstraintMaterial material = physics::ConstraintMaterial::xpbd(Real(1e-3));  // m/N
+  Real xsph_coefficient = Real(0.3);  // share of the neighbours' mean velocity taken per step
+  Real xsph_radius = Real(4e-3);      // neighbourhood at rest (unit: m)
+};
+
+// Returns the index of the new set in world.strands. Set-up only.
+std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_t mesh_b,
+                          const StrandSetParams& params);
+
+// Interior (non-end) particles of a strand set, in order.
+std::vector<std::uint32_t> interior_particles(const StrandSet& set);
+
+// Puts every strand end on its surface (positions only; the ends are kinematic).
+void place_strand_ends(TissueWorld& world);
+
+}  // namespace imasim::tissue

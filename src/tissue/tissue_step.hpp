@@ -1,0 +1,20 @@
+#pragma once
+// One step of the thoracic-wall tissues (ARCHITECTURE step items 5-6): the engine step, XSPH
+// smoothing of the fat, the offset couplings (eq. 8-9), then normals, strand ends and visual
+// meshes refreshed from the new positions. Allocation-free after set-up.
+#include "physics/executor.hpp"
+#include "physics/step.hpp"
+#include "tissue/tissue_world.hpp"
+
+namespace imasim::tissue {
+
+// Call once after building (or changing) the world: sizes the solver scratch and places the
+// strand ends and visual meshes.
+void finish_setup(TissueWorld& world);
+
+physics::StepResult step_tissue(TissueWorld& world, physics::Executor& exec);
+
+// Recomputes vertex normals of the mesh objects and the fine visual meshes.
+void update_surfaces(TissueWorld& world);
+
+}  // namespace imasim::tissue

@@ -1,0 +1,70 @@
+#pragma once
+// One world, many tissue objects: every object's particles live in one physics State, so a
+// constraint may join particles of different objects (strands, attachments, grasping), while
+// each object keeps its own parameters (mass, gravity, damping, materials).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/surface_binding.hpp"
+#include "geometry/triangle_mesh.hpp"
+#include "physics/model.hpp"
+#include "physics/state.hpp"
+#include "tissue/coupling.hpp"
+
+namespace imasim::tissue {
+
+// A simulated triangle surface: mesh vertex v is particle first_particle + v.
+struct MeshObject {
+  std::string name;
+  physics::ObjectId object = 0;
+  std::uint32_t first_particle = 0;
+  std::uint32_t particle_count = 0;
+  std::vector<geometry::Triangle> triangles;  // mesh-local vertex indices
+  std::vector<Vec3> normals;                  // per vertex, refreshed every step
+};
+
+// A fine display mesh that follows a coarse MeshObject (SPEC S2 multi-resolution).
+struct VisualMesh {
+  std::uint32_t source_mesh = 0;  // index into TissueWorld::meshes
+  std::vector<geometry::Triangle> triangles;
+  std::vector<geometry::SurfaceBinding> bindings;  // one per fine vertex
+  std::vector<Vec3> positions;                     // refreshed every step (unit: m)
+};
+
+// Connective-tissue strands between two mesh objects (2.3.4). Strand s owns particles
+// first_particle + s * (segments + 1) ... + segments; its first and last particles are its ends,
+// kinematic (inverse mass 0) and placed on their surfaces every step through the bindings.
+struct StrandSet {
+  std::string name;
+  physics::ObjectId object = 0;
+  std::uint32_t mesh_a = 0, mesh_b = 0;
+  std::uint32_t segments = 0;  // n
+  std::uint32_t first_particle = 0;
+  std::uint32_t strand_count = 0;
+  std::vector<geometry::SurfaceBinding> end_a, end_b;  // per strand, on mesh_a and mesh_b
+  std::vector<std::uint32_t> face_a;                   // source face of each strand on mesh_a
+  std::vector<Real> diameter;                          // per strand particle, for drawing (unit: m)
+  // XSPH smoothing (SPEC S2): neighbours of each interior particle at rest, as CSR over the
+  // set's particles, and the smoothing coefficient in [0, 1].
+  std::vector<std::uint32_t> neighbour_start, neighbours;
+  Real xsph_coefficient = 0;
+  Real xsph_radius = 0;  // (unit: m)
+
+  std::uint32_t particle_count() const { return strand_count * (segments + 1); }
+  std::uint32_t particle(std::uint32_t strand, std::uint32_t k) const {
+    return first_particle + strand * (segments + 1) + k;
+  }
+};
+
+struct TissueWorld {
+  physics::Model model;
+  physics::State state;
+  std::vector<MeshObject> meshes;
+  std::vector<VisualMesh> visuals;
+  std::vector<StrandSet> strands;
+  std::vector<OffsetCoupling> couplings;
+  std::vector<Vec3> xsph_scratch;  // velocities being smoothed, sized at set-up
+};
+
+}  // namespace imasim::tissue

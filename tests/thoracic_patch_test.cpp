@@ -1,0 +1,159 @@
+// The thoracic-wall patch: fascia, IMA (coarse + fine), strands, support, coupled in one world.
+#include <gtest/gtest.h>
+
+#include "physics/constraint_system.hpp"
+#include "physics/executor.hpp"
+#include "precision.hpp"
+#include "tissue/mesh_object.hpp"
+#include "tissue/thoracic_patch.hpp"
+#include "tissue/tissue_step.hpp"
+
+namespace imasim::tissue {
+namespace {
+
+void run(ThoracicPatch& patch, int steps, int threads = 1) {
+  physics::Executor exec(threads);
+  for (int n = 0; n < steps; ++n)
+    ASSERT_TRUE(step_tissue(patch.world, exec).ok()) << "step " << n;
+}
+
+TEST(ThoracicPatch, EveryStrandHasNSegmentsAndItsEndsFixedOnTheSurfaces) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  const TissueWorld& w = patch.world;
+  std::size_t strand_constraints = 0;
+  for (const StrandSet& set : w.strands) {
+    ASSERT_GT(set.strand_count, 100u);
+    strand_constraints += std::size_t(set.strand_count) * set.segments;
+    for (std::uint32_t s = 0; s < set.strand_count; ++s) {
+      EXPECT_TRUE(w.state.particles.is_fixed(set.particle(s, 0)));
+      EXPECT_TRUE(w.state.particles.is_fixed(set.particle(s, set.segments)));
+      for (std::uint32_t k = 1; k < set.segments; ++k) {
+        EXPECT_FALSE(w.state.particles.is_fixed(set.particle(s, k)));
+      }
+    }
+  }
+  // Mesh objects: edges of fascia and IMA; the wall is static (no constraints); strands: n each.
+  std::size_t mesh_edges = 0;
+  for (std::uint32_t m : {patch.fascia, patch.ima}) {
+    const MeshObject& o = w.meshes[m];
+    mesh_edges += o.triangles.size() * 3 / 2 + (m == patch.fascia ? 2 * (11 + 39) / 2 : 6);
+  }
+  EXPECT_EQ(w.state.constraints.distance.size(), mesh_edges + strand_constraints);
+  EXPECT_EQ(w.visuals[patch.ima_visual].positions.size(), 4 * w.meshes[patch.ima].particle_count);
+}
+
+TEST(ThoracicPatch, SettlesUnderGravityWithStrandEndsOnTheirSurfaces) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  run(patch, 600);  // 3 s
+  const TissueWorld& w = patch.world;
+  for (const Vec3& x : w.state.particles.position)
+    ASSERT_TRUE(x.allFinite());
+  for (const Vec3& x : w.visuals[patch.ima_visual].positions)
+    ASSERT_TRUE(x.allFinite());
+  for (const StrandSet& set : w.strands) {
+    const MeshObject& a = w.meshes[set.mesh_a];
+    const MeshObject& b = w.meshes[set.mesh_b];
+    for (std::uint32_t s = 0; s < set.strand_count; ++s) {
+      const Vec3 on_a =
+          geometry::bound_point(set.end_a[s], mesh_positions(w, a), a.normals, a.triangles);
+      const Vec3 on_b =
+          geometry::bound_point(set.end_b[s], mesh_positions(w, b), b.normals, b.triangles);
+      EXPECT_EQ(w.state.particles.position[set.particle(s, 0)], on_a);
+      EXPECT_EQ(w.state.particles.position[set.particle(s, set.segments)], on_b);
+    }
+  }
+  // Settled: the fascia hangs into the cavity by millimetres and is at rest.
+  const MeshObject& f = w.meshes[patch.fascia];
+  double sag = 0, speed = 0;
+  for (std::uint32_t k = 0; k < f.particle_count; ++k) {
+    const std::uint32_t i = f.first_particle + k;
+    sag = std::max(
+        sag, double(w.state.particles.rest_position[i].y() - w.state.particles.position[i].y()));
+    speed = std::max(speed, double(w.state.particles.velocity[i].norm()));
+  }
+  EXPECT_GT(sag, 0.001);
+  EXPECT_LT(sag, 0.02);
+  EXPECT_LT(speed, 1e-4);
+}
+
+TEST(ThoracicPatch, LiftingTheFasciaLiftsTheFatUnderItLessWithDistance) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  run(patch, 400);
+  TissueWorld& w = patch.world;
+  const MeshObject& f = w.meshes[patch.fascia];
+  // Forceps stand-in: pull the fascia vertex at (col 6, row 20) 8 mm further into the cavity.
+  const std::uint32_t lifted = f.first_particle + 20 * 12 + 6;
+  const Vec3 lift_point = w.state.particles.position[lifted];
+  const std::vector<Vec3> before = w.state.particles.position;
+  const physics::MaterialId grip = w.model.add_material(physics::ConstraintMaterial::xpbd(0));
+  physics::add_attachment(w.state.constraints, w.state.particles, lifted,
+                          lift_point + Vec3(0, -0.008, 0), grip);
+  physics::prepare_state(w.model, w.state);
+  run(patch, 200);
+  // Lift (towards the cavity, -y) of each interior fat particle of the fascia strands, binned by
+  // its rest distance from the lifted vertex.
+  const StrandSet& fat = w.strands[patch.fascia_fat];
+  double near_sum = 0, far_sum = 0, first_sum = 0, last_sum = 0;
+  int near_n = 0, far_n = 0, chain_n = 0;
+  for (std::uint32_t s = 0; s < fat.strand_count; ++s) {
+    for (std::uint32_t k = 1; k < fat.segments; ++k) {
+      const std::uint32_t i = fat.particle(s, k);
+      const double lift = before[i].y() - w.state.particles.position[i].y();
+      const Vec3 d = w.state.particles.rest_position[i] - w.state.particles.rest_position[lifted];
+      const double dist = std::hypot(d.x(), d.z());
+      if (dist < 0.004) {
+        near_sum += lift, ++near_n;
+        if (k == 1) first_sum += lift, ++chain_n;
+        if (k + 1 == fat.segments) last_sum += lift;
+      } else if (dist > 0.015 && dist < 0.03) {
+        far_sum += lift, ++far_n;
+      }
+    }
+  }
+  ASSERT_GT(near_n, 4);
+  ASSERT_GT(far_n, 20);
+  const double near = near_sum / near_n, far = far_sum / far_n;
+  EXPECT_GT(near, 0.002);    // the fat under the forceps comes up by millimetres
+  EXPECT_GT(near, 4 * far);  // and less and less with distance
+  EXPECT_GT(first_sum / chain_n, last_sum / chain_n);  // along a strand: less towards the wall
+}
+
+TEST(ThoracicPatch, ImaStaysAtRestWhileUncoupledAndFollowsTheFatWhenCoupled) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  TissueWorld& w = patch.world;
+  const MeshObject& ima = w.meshes[patch.ima];
+  auto ima_offset = [&] {
+    double m = 0;
+    for (std::uint32_t k = 0; k < ima.particle_count; ++k) {
+      const std::uint32_t i = ima.first_particle + k;
+      m = std::max(
+          m, double((w.state.particles.position[i] - w.state.particles.rest_position[i]).norm()));
+    }
+    return m;
+  };
+  run(patch, 100);
+  EXPECT_LT(ima_offset(), 1e-9);  // beta = 0: offsets decay by 0.8 a step
+  // Displace the fat near the vessel and engage the coupling (beta = 1).
+  for (std::uint32_t i : interior_particles(w.strands[patch.ima_fat])) {
+    w.state.particles.position[i] += Vec3(0.002, 0, 0);
+  }
+  OffsetCoupling& to_ima = w.couplings[0];
+  ASSERT_EQ(to_ima.name, "fat->ima");
+  to_ima.active = true;
+  for (const OffsetCoupling& c : w.couplings)
+    apply_coupling(c, w.state.particles);
+  EXPECT_GT(ima_offset(), 0.001);
+}
+
+TEST(ThoracicPatch, DeterministicAcrossThreadCounts) {
+  std::uint64_t hash[2];
+  for (int t = 0; t < 2; ++t) {
+    ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+    run(patch, 50, t + 1);
+    hash[t] = physics::position_hash(patch.world.state);
+  }
+  EXPECT_EQ(hash[0], hash[1]);
+}
+
+}  // namespace
+}  // namespace imasim::tissue
