@@ -67,6 +67,35 @@ TEST(ClothCommand, ReportsARefusedStepWithExitCodeThree) {
   EXPECT_LT(j["failed_particle"].get<int>(), 64);
 }
 
+TEST(RunCommand, RunsTheThoraxSceneHeadless) {
+  const Outcome r = run_imasim("run --headless --seconds 0.5 --threads 1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["heart"], "beating");
+  EXPECT_EQ(j["steps"], 100);
+  EXPECT_GT(j["particles"].get<int>(), 1000);
+  EXPECT_EQ(j["ports"], 4);
+  EXPECT_GT(j["ima_motion_max_m"].get<double>(), 1e-4);
+  EXPECT_NEAR(j["heart_phase"].get<double>(), 0.7 + 0.5 * 75 / 60.0 - 1, 1e-9);
+  EXPECT_EQ(j["status"], "ok");
+  const auto two =
+      nlohmann::json::parse(run_imasim("run --headless --seconds 0.5 --threads 2 --json").output);
+  EXPECT_EQ(two["state_hash"], j["state_hash"]);
+}
+
+TEST(RunCommand, StaticHeartAndClearErrors) {
+  const auto j =
+      nlohmann::json::parse(run_imasim("run --headless --seconds 0.3 --static --json").output);
+  EXPECT_EQ(j["heart"], "static");
+  EXPECT_LT(j["ima_motion_max_m"].get<double>(), 1e-15);
+  const Outcome window = run_imasim("run");
+  EXPECT_EQ(window.exit_code, 2);
+  EXPECT_NE(window.output.find("--headless"), std::string::npos);
+  const Outcome bad = run_imasim("run --headless --heart-rate 5");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--heart-rate"), std::string::npos);
+}
+
 TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {
   struct Case {
     const char* args;

@@ -10,6 +10,7 @@
 #include "physics/executor.hpp"
 #include "physics/step.hpp"
 #include "scene/cloth_scene.hpp"
+#include "scene/thorax_scene.hpp"
 #include "tissue/thoracic_patch.hpp"
 #include "tissue/tissue_step.hpp"
 
@@ -112,6 +113,21 @@ TEST(NoAllocation, TissueStepDoesNotAllocate) {
     g_counting = true;
     for (int n = 0; n < 20; ++n)
       EXPECT_TRUE(tissue::step_tissue(patch.world, exec).ok());
+    g_counting = false;
+    EXPECT_EQ(g_allocations.load(), 0) << threads << " threads";
+  }
+}
+
+TEST(NoAllocation, ThoraxSceneStepDoesNotAllocate) {
+  for (const int threads : {1, 2}) {
+    scene::ThoraxScene s = scene::make_thorax_scene(scene::default_thorax_scene_params());
+    physics::Executor exec(threads);
+    for (int n = 0; n < 5; ++n)
+      EXPECT_TRUE(scene::step_thorax_scene(s, exec).ok());
+    g_allocations = 0;
+    g_counting = true;
+    for (int n = 0; n < 40; ++n)
+      EXPECT_TRUE(scene::step_thorax_scene(s, exec).ok());
     g_counting = false;
     EXPECT_EQ(g_allocations.load(), 0) << threads << " threads";
   }

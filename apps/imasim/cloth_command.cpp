@@ -8,6 +8,7 @@
 #include "math/state_hash.hpp"
 #include "physics/executor.hpp"
 #include "physics/step.hpp"
+#include "report.hpp"
 
 namespace imasim::cli {
 
@@ -86,12 +87,7 @@ int run_cloth_command(const ClothOptions& options) {
     }
     step_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
   }
-  double median = 0;
-  if (!step_ms.empty()) {
-    const auto mid = step_ms.begin() + static_cast<std::ptrdiff_t>(step_ms.size() / 2);
-    std::nth_element(step_ms.begin(), mid, step_ms.end());
-    median = *mid;
-  }
+  const double median_ms = median(step_ms);
 
   const physics::State& s = scene.state;
   bool finite = true;
@@ -107,25 +103,11 @@ int run_cloth_command(const ClothOptions& options) {
   out["steps"] = steps_done;
   out["center_sag_m"] = scene::centre_sag(scene);
   out["max_displacement_m"] = scene::max_displacement(s);
-  out["ms_per_step_median"] = median;
+  out["ms_per_step_median"] = median_ms;
   out["state_hash"] = to_hex(physics::position_hash(s));
-  // A refused step leaves the state as it was before it, so positions stay finite; `finite`
-  // says whether the simulation itself produced only finite values.
-  out["finite"] = finite && failure.status != physics::StepStatus::non_finite;
-  out["status"] = physics::to_string(failure.status);
-  if (!failure.ok()) {
-    out["failed_step"] = steps_done;
-    out["failed_particle"] = failure.particle;
-  }
 
-  if (options.json) {
-    std::cout << out.dump() << '\n';
-  } else {
-    for (const auto& [key, value] : out.items()) {
-      std::cout << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump())
-                << '\n';
-    }
-  }
+  add_status(out, finite, failure, steps_done);
+  print_report(out, options.json);
   return failure.ok() ? 0 : 3;
 }
 

@@ -4,11 +4,13 @@
 #include <iostream>
 
 #include "cloth_command.hpp"
+#include "run_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
   app.require_subcommand(1);
   auto cloth = imasim::cli::add_cloth_command(app);
+  auto run = imasim::cli::add_run_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -16,6 +18,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("cloth")) return imasim::cli::run_cloth_command(*cloth);
+    if (app.got_subcommand("run")) return imasim::cli::run_run_command(*run);
   } catch (const std::exception& e) {
     std::cerr << "imasim: error: " << e.what() << '\n';
     return 2;

@@ -10,8 +10,9 @@ namespace {
 constexpr int kMaxCellsPerAxis = 256;  // caps memory for large, sparse sets
 }
 
-UniformGrid::UniformGrid(const std::vector<Box>& boxes, Real cell) : item_count_(boxes.size()) {
+void UniformGrid::rebuild(const std::vector<Box>& boxes, Real cell) {
   if (!(cell > 0)) throw std::invalid_argument("uniform grid cell size must be positive");
+  item_count_ = boxes.size();
   Box bounds;
   for (const Box& b : boxes)
     bounds.extend(b);
@@ -23,7 +24,8 @@ UniformGrid::UniformGrid(const std::vector<Box>& boxes, Real cell) : item_count_
   for (int a = 0; a < 3; ++a)
     dims_[a] = std::max(1, int(std::floor(extent[a] / cell_)) + 1);
   const std::size_t cells = std::size_t(dims_[0]) * dims_[1] * dims_[2];
-  start_.assign(cells + 1, 0u);
+  start_.resize(cells + 1);
+  std::fill(start_.begin(), start_.end(), 0u);
   auto for_cells = [&](const Box& b, auto&& f) {
     const auto lo = cell_of(b.min()), hi = cell_of(b.max());
     for (int z = lo[2]; z <= hi[2]; ++z)
@@ -36,10 +38,20 @@ UniformGrid::UniformGrid(const std::vector<Box>& boxes, Real cell) : item_count_
   for (std::size_t c = 0; c < cells; ++c)
     start_[c + 1] += start_[c];
   items_.resize(start_[cells]);
-  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  fill_.resize(cells);
+  std::copy(start_.begin(), start_.begin() + static_cast<std::ptrdiff_t>(cells), fill_.begin());
   for (std::uint32_t i = 0; i < boxes.size(); ++i) {
-    for_cells(boxes[i], [&](std::size_t c) { items_[fill[c]++] = i; });
+    for_cells(boxes[i], [&](std::size_t c) { items_[fill_[c]++] = i; });
   }
+}
+
+void UniformGrid::reserve_headroom(Real factor) {
+  const auto grow = [factor](std::vector<std::uint32_t>& v) {
+    v.reserve(static_cast<std::size_t>(Real(v.size()) * factor) + 8);
+  };
+  grow(start_);
+  grow(items_);
+  grow(fill_);
 }
 
 std::array<int, 3> UniformGrid::cell_of(const Vec3& p) const {

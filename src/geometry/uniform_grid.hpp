@@ -16,8 +16,13 @@ using Box = Eigen::AlignedBox<Real, 3>;
 
 class UniformGrid {
  public:
+  UniformGrid() = default;
   // `cell` (unit: m) > 0; boxes may be empty-volume (points).
-  UniformGrid(const std::vector<Box>& boxes, Real cell);
+  UniformGrid(const std::vector<Box>& boxes, Real cell) { rebuild(boxes, cell); }
+
+  // Rebuilds over new boxes, reusing the storage: no allocation once it has grown to the sizes
+  // needed (for a moving surface rebuilt every step).
+  void rebuild(const std::vector<Box>& boxes, Real cell);
 
   // Calls f(item) once for each item whose box overlaps cells touched by `query`. `visited` is a
   // caller-owned stamp array (one entry per item, kept between calls) used to report each
@@ -45,6 +50,10 @@ class UniformGrid {
 
   Real cell_size() const { return cell_; }
 
+  // Reserves `factor` times the current storage, so that rebuilds over boxes that move and
+  // change their extent (a beating heart) stay allocation-free.
+  void reserve_headroom(Real factor);
+
  private:
   std::array<int, 3> cell_of(const Vec3& p) const;
   std::size_t index(int x, int y, int z) const {
@@ -57,6 +66,7 @@ class UniformGrid {
   std::array<int, 3> dims_ = {1, 1, 1};
   std::vector<std::uint32_t> start_;  // CSR: items of cell c are items_[start_[c] .. start_[c+1])
   std::vector<std::uint32_t> items_;
+  std::vector<std::uint32_t> fill_;  // build scratch
   std::size_t item_count_ = 0;
 };
 

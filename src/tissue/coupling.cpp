@@ -6,17 +6,17 @@
 
 namespace imasim::tissue {
 
-void apply_coupling(const OffsetCoupling& c, physics::Particles& P) {
+void apply_coupling(const OffsetCoupling& c, physics::Particles& P, const std::vector<Vec3>& ref) {
   for (const auto& [j, i] : c.pairs) {
     if (!c.active) {  // eq. 9, beta = 0
-      P.position[i] = P.rest_position[i] + c.decay * (P.position[i] - P.rest_position[i]);
+      P.position[i] = ref[i] + c.decay * (P.position[i] - ref[i]);
       continue;
     }
-    const Vec3 offset = P.position[j] - P.rest_position[j];  // O_j
+    const Vec3 offset = P.position[j] - ref[j];  // O_j
     const Real len = offset.norm();
     // eq. 8 (and eq. 9, beta = 1): direction of O_j, length clamped to lambda_max.
-    P.position[i] = len > c.lambda_max ? Vec3(P.rest_position[i] + (c.lambda_max / len) * offset)
-                                       : Vec3(P.rest_position[i] + offset);
+    P.position[i] =
+        len > c.lambda_max ? Vec3(ref[i] + (c.lambda_max / len) * offset) : Vec3(ref[i] + offset);
   }
 }
 

@@ -23,7 +23,13 @@ struct OffsetCoupling {
 };
 
 // Applies one coupling to the particles' positions (destinations only; sources are read).
-void apply_coupling(const OffsetCoupling& c, physics::Particles& particles);
+// Offsets are measured from `reference` (per particle): the rest positions, or rest positions
+// moved by a boundary condition such as the heart's drive.
+void apply_coupling(const OffsetCoupling& c, physics::Particles& particles,
+                    const std::vector<Vec3>& reference);
+inline void apply_coupling(const OffsetCoupling& c, physics::Particles& particles) {
+  apply_coupling(c, particles, particles.rest_position);
+}
 
 // Pairs each destination particle with its nearest source particle (by rest position), using a
 // spatial grid; destinations with no source within `radius` (unit: m) are left out.

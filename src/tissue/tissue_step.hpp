@@ -14,6 +14,11 @@ void finish_setup(TissueWorld& world);
 
 physics::StepResult step_tissue(TissueWorld& world, physics::Executor& exec);
 
+// The two halves of step_tissue, for callers that act in between (the heart's collider):
+// engine step, XSPH and couplings; then surfaces, visual meshes and strand ends.
+physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& exec);
+void finish_tissue_step(TissueWorld& world);
+
 // Recomputes vertex normals of the mesh objects and the fine visual meshes.
 void update_surfaces(TissueWorld& world);
 

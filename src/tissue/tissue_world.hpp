@@ -64,6 +64,9 @@ struct TissueWorld {
   std::vector<VisualMesh> visuals;
   std::vector<StrandSet> strands;
   std::vector<OffsetCoupling> couplings;
+  // Per particle: where its offsets are measured from (eq. 8-9): the rest position, moved by
+  // boundary conditions such as the heart's drive (heart_field.hpp).
+  std::vector<Vec3> reference;
   std::vector<Vec3> xsph_scratch;  // velocities being smoothed, sized at set-up
 };
 

@@ -1,0 +1,24 @@
+#pragma once
+// `imasim run --headless`: assembles the thorax scene (tissues, beating heart, ports), steps it
+// and reports timings, the heart phase, the motion reaching the IMA, a state hash and any
+// divergence.
+#include <CLI/CLI.hpp>
+#include <memory>
+
+namespace imasim::cli {
+
+struct RunOptions {
+  bool headless = false;
+  double seconds = 5;
+  bool static_heart = false;
+  double heart_rate_bpm = 75;
+  int threads = 0;
+  bool json = false;
+};
+
+std::shared_ptr<RunOptions> add_run_command(CLI::App& app);
+
+// Returns the exit code (0 ok, 2 bad request, 3 the simulation diverged).
+int run_run_command(const RunOptions& options);
+
+}  // namespace imasim::cli

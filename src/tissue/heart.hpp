@@ -1,0 +1,64 @@
+#pragma once
+// The 4D beating heart (SPEC S3, paper 2.2): a sequence of closed surface meshes with one
+// topology, one per cardiac phase, played back periodically with C1 interpolation. The default
+// is procedural: left and right ventricles as closed surfaces whose volumes follow a
+// physiological curve (ejection fraction, systole share of the cycle) with longitudinal
+// shortening and twist; a series loaded from files takes the keyframes' place.
+#include <cstdint>
+#include <vector>
+
+#include "geometry/triangle_mesh.hpp"
+
+namespace imasim::tissue {
+
+struct HeartParams {
+  Vec3 centre = Vec3(Real(0.005), Real(-0.05), Real(0.09));            // LV centre (unit: m)
+  Vec3 long_axis = Vec3(Real(0.3), Real(-0.3), Real(1)).normalized();  // base -> apex
+  Vec3 lateral = Vec3::UnitX();  // towards the RV side (made orthogonal to the long axis)
+  Real lv_length = Real(0.085);  // base-apex at end-diastole (unit: m)
+  Real lv_radius = Real(0.026);  // (unit: m)
+  Real rv_length = Real(0.075), rv_radius = Real(0.024);
+  Real rv_offset = Real(0.022);               // RV centre from LV centre along `lateral` (m)
+  Real ejection_fraction = Real(0.6);         // (EDV - ESV) / EDV
+  Real systole_fraction = Real(0.35);         // share of the cycle spent ejecting
+  Real longitudinal_shortening = Real(0.12);  // base-apex shortening at end-systole
+  Real twist = Real(0.2);                     // apex rotation against the base at end-systole (rad)
+  std::uint32_t phases = 11;                  // keyframes per cycle (the paper's 11)
+  std::uint32_t rings = 12, segments = 18;    // surface resolution per ventricle
+};
+
+// Keyframes with one topology; keyframe k is the shape at cycle fraction k / phases.
+struct HeartModel {
+  geometry::TriangleMesh topology;             // triangles + the end-diastole vertices
+  std::vector<std::vector<Vec3>> keyframes;    // [phase][vertex]
+  std::vector<std::uint32_t> component_start;  // vertex ranges of LV, RV (and end)
+  std::vector<std::uint32_t> component_triangle_start;
+};
+
+HeartModel make_procedural_heart(const HeartParams& params);
+
+// The volume curve of the procedural heart as a fraction of end-diastolic volume, t in [0, 1):
+// cosine ejection to 1 - EF over the systole share, cosine filling back over the rest; C1.
+Real heart_volume_fraction(const HeartParams& params, Real t);
+
+// Periodic Catmull-Rom interpolation of the keyframes at cycle fraction t (any real t; C1 in t,
+// passes through every keyframe). Writes vertex positions into `out` (sized to the vertices).
+void interpolate_heart(const HeartModel& heart, Real t, std::vector<Vec3>& out);
+
+// Enclosed volume of component c (LV 0, RV 1) of a heart shape (unit: m^3).
+Real component_volume(const HeartModel& heart, const std::vector<Vec3>& positions,
+                      std::uint32_t component);
+
+// Playback: the beating heart at a heart rate, or frozen at one phase (the paper's static group,
+// at 70 % of the cycle by default).
+struct HeartPlayback {
+  Real heart_rate_bpm = 75;
+  bool beating = true;
+  Real static_phase = Real(0.7);
+
+  // Cycle fraction in [0, 1): static_phase + time * rate when beating (so both modes start from
+  // the same shape), static_phase when not.
+  Real phase_at(double time_s) const;
+};
+
+}  // namespace imasim::tissue

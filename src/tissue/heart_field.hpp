@@ -1,0 +1,70 @@
+#pragma once
+// The heart acting on the tissue world (SPEC S3 reading), two ways:
+//  - a moving collider: after each step no dynamic tissue particle is left inside the heart's
+//    current surface (it is put back on the surface, `margin` outside, and loses the velocity
+//    component that pointed inwards);
+//  - a moving boundary condition: the anchors of the deep tissues follow the heart's
+//    displacement from its reference shape (the static phase), attenuated with distance:
+//    reference(p) = rest(p) + exp(-d/L) (h_j(t) - h_j(ref)), with h_j the heart vertex nearest
+//    p at set-up and d its distance. Kinematic anchors (inverse mass 0) are moved there; the
+//    offsets of the couplings (eq. 8-9) are taken from the reference, so the vessel, relaxing by
+//    0.8 a step, relaxes towards the moving reference. The maps are built once; nothing is
+//    searched for the drive while running. In static mode the displacement is zero.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/uniform_grid.hpp"
+#include "tissue/heart.hpp"
+#include "tissue/tissue_world.hpp"
+
+namespace imasim::tissue {
+
+struct HeartField {
+  HeartModel model;
+  HeartPlayback playback;
+  Real margin = Real(0.5e-3);            // kept between tissue and heart (unit: m)
+  Real attenuation_length = Real(0.02);  // L (unit: m)
+  Real phase = 0;                        // current cycle fraction
+  std::vector<Vec3> reference;           // heart at the static phase
+  std::vector<Vec3> current;             // heart now
+  std::vector<Vec3> normals;             // of `current`
+  struct Anchor {
+    std::uint32_t particle = 0, heart_vertex = 0;
+    Real weight = 0;  // exp(-d / L)
+  };
+  std::vector<Anchor> anchors;
+  std::uint32_t last_contacts = 0;  // particles put back on the surface by the last collide()
+  // Collider scratch, sized at set-up.
+  std::vector<geometry::Box> boxes;
+  geometry::UniformGrid grid;
+  std::vector<std::uint32_t> visited;
+  std::uint32_t stamp = 0;
+};
+
+// Builds the field; the heart starts at playback.phase_at(0).
+HeartField make_heart_field(const HeartModel& model, const HeartPlayback& playback);
+
+// Drives the particles of the given mesh objects and strand sets (interior particles) with the
+// heart (see above). Call at set-up, after the world is built.
+void add_heart_anchors(HeartField& heart, TissueWorld& world,
+                       const std::vector<std::uint32_t>& meshes,
+                       const std::vector<std::uint32_t>& strand_sets);
+
+// Moves the heart to the cycle phase at `time_s` and the anchors with it.
+void advance_heart(HeartField& heart, TissueWorld& world, double time_s);
+
+// Puts dynamic particles found inside the heart back on its surface; returns how many. A
+// particle is looked for within `search` of the surface plus however far it moved since
+// `previous` (its position before this step): the heart moves < 0.2 mm per step and nothing is
+// left inside after a step, so nothing can have got deeper than that. At set-up, where tissue may
+// start deep inside the heart, pass the current positions as `previous` and a larger search.
+inline constexpr Real kHeartStepSearch = Real(0.002);  // (unit: m)
+std::uint32_t collide_with_heart(HeartField& heart, physics::Particles& particles,
+                                 std::span<const Vec3> previous, Real search = kHeartStepSearch);
+
+// Signed distance of p from the heart's current surface near it (negative inside); +infinity
+// when no heart triangle lies within `search` (unit: m).
+Real heart_signed_distance(HeartField& heart, const Vec3& p, Real search);
+
+}  // namespace imasim::tissue
