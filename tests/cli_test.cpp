@@ -96,6 +96,40 @@ TEST(RunCommand, StaticHeartAndClearErrors) {
   EXPECT_NE(bad.output.find("--heart-rate"), std::string::npos);
 }
 
+TEST(SceneCommand, PrintDefaultChecksAndRunsLikeTheBuiltInScene) {
+  const std::string path = testing::TempDir() + "imasim_default_scene.toml";
+  const Outcome printed = run_imasim("scene print-default > " + path);
+  ASSERT_EQ(printed.exit_code, 0) << printed.output;
+  const Outcome checked = run_imasim("scene check " + path);
+  EXPECT_EQ(checked.exit_code, 0) << checked.output;
+  EXPECT_NE(checked.output.find(": ok"), std::string::npos);
+  const auto from_file = nlohmann::json::parse(
+      run_imasim("run --headless --seconds 0.1 --threads 1 --json --scene " + path).output);
+  const auto built_in =
+      nlohmann::json::parse(run_imasim("run --headless --seconds 0.1 --threads 1 --json").output);
+  EXPECT_EQ(from_file["state_hash"], built_in["state_hash"]);
+}
+
+TEST(SceneCommand, CheckListsProblemsWithFileLineAndKey) {
+  const std::string path = testing::TempDir() + "imasim_bad_scene.toml";
+  ASSERT_EQ(run_imasim("scene print-default > /dev/null").exit_code, 0);
+  {
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("[heart]\nheart_rate_bpm = 500\n[fascia]\nnxx = 4\n", f);
+    std::fclose(f);
+  }
+  const Outcome r = run_imasim("scene check " + path);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find(path + ":2: key 'heart.heart_rate_bpm'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(path + ":4: key 'fascia.nxx': unknown key; did you mean 'fascia.nx'?"),
+            std::string::npos)
+      << r.output;
+  const Outcome run = run_imasim("run --headless --scene " + path);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.output.find("heart.heart_rate_bpm"), std::string::npos);
+}
+
 TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {
   struct Case {
     const char* args;

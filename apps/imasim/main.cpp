@@ -5,12 +5,14 @@
 
 #include "cloth_command.hpp"
 #include "run_command.hpp"
+#include "scene_command.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
   app.require_subcommand(1);
   auto cloth = imasim::cli::add_cloth_command(app);
   auto run = imasim::cli::add_run_command(app);
+  auto scene = imasim::cli::add_scene_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -19,6 +21,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("cloth")) return imasim::cli::run_cloth_command(*cloth);
     if (app.got_subcommand("run")) return imasim::cli::run_run_command(*run);
+    if (app.got_subcommand("scene")) return imasim::cli::run_scene_command(*scene);
   } catch (const std::exception& e) {
     std::cerr << "imasim: error: " << e.what() << '\n';
     return 2;

@@ -4,14 +4,16 @@
 // divergence.
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <string>
 
 namespace imasim::cli {
 
 struct RunOptions {
   bool headless = false;
+  std::string scene_file;  // empty: the built-in scene
   double seconds = 5;
   bool static_heart = false;
-  double heart_rate_bpm = 75;
+  double heart_rate_bpm = 0;  // 0: the scene's
   int threads = 0;
   bool json = false;
 };

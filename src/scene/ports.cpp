@@ -12,9 +12,13 @@ std::vector<Port> default_ports(const Vec3& target) {
        Vec3::Zero()},
       {"assistant", PortKind::assistant, Vec3(Real(0.12), Real(-0.03), Real(0.20)), Vec3::Zero()},
   };
+  aim_ports(ports, target);
+  return ports;
+}
+
+void aim_ports(std::vector<Port>& ports, const Vec3& target) {
   for (Port& p : ports)
     p.direction = (target - p.position).normalized();
-  return ports;
 }
 
 const char* to_string(PortKind kind) {

@@ -21,6 +21,9 @@ struct Port {
 // chest wall, aimed at the middle of the harvest segment (scene frame of thorax_scene.hpp).
 std::vector<Port> default_ports(const Vec3& target);
 
+// Points every port's direction at `target`.
+void aim_ports(std::vector<Port>& ports, const Vec3& target);
+
 const char* to_string(PortKind kind);
 
 }  // namespace imasim::scene

@@ -10,6 +10,8 @@ ThoraxSceneParams default_thorax_scene_params() {
   // The heart lies under the left IMA, in the cavity (-y), its free wall touching the fascia's
   // fat and pressing into them as it fills: LV centre 38 mm from the wall, radius 26 mm.
   p.heart.centre = Vec3(Real(0.005), Real(-0.038), Real(0.09));
+  p.port_target = Vec3(0, Real(-0.004), Real(0.075));  // middle of the harvest segment
+  p.ports = default_ports(p.port_target);
   return p;
 }
 
@@ -28,7 +30,8 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   tissue::collide_with_heart(scene.heart, w.state.particles, w.state.particles.position,
                              Real(0.03));
   tissue::finish_tissue_step(w);
-  scene.ports = default_ports(Vec3(0, Real(-0.004), Real(0.075)));
+  scene.ports = params.ports;
+  aim_ports(scene.ports, params.port_target);
   return scene;
 }
 

@@ -17,6 +17,8 @@ struct ThoraxSceneParams {
   tissue::ThoracicPatchParams patch;
   tissue::HeartParams heart;
   tissue::HeartPlayback playback;
+  std::vector<Port> ports;          // camera, left and right instrument, assistant
+  Vec3 port_target = Vec3::Zero();  // where the ports aim (unit: m)
 };
 
 ThoraxSceneParams default_thorax_scene_params();

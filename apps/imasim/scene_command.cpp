@@ -1,0 +1,35 @@
+#include "scene_command.hpp"
+
+#include <iostream>
+
+#include "scene/scene_file.hpp"
+
+namespace imasim::cli {
+
+std::shared_ptr<SceneOptions> add_scene_command(CLI::App& app) {
+  auto opt = std::make_shared<SceneOptions>();
+  CLI::App* cmd = app.add_subcommand("scene", "Scene files: print the default, check a file");
+  cmd->require_subcommand(1);
+  opt->print_default = cmd->add_subcommand("print-default", "Write the built-in scene as TOML");
+  opt->check = cmd->add_subcommand("check", "Validate a scene file");
+  opt->check->add_option("FILE", opt->file, "Scene file (TOML)")->required();
+  return opt;
+}
+
+int run_scene_command(const SceneOptions& o) {
+  if (*o.print_default) {
+    std::cout << scene::print_scene(scene::default_thorax_scene_params());
+    return 0;
+  }
+  try {
+    scene::load_scene_file(o.file);
+  } catch (const scene::SceneFileError& e) {
+    for (const std::string& m : e.messages())
+      std::cerr << m << '\n';
+    return 1;
+  }
+  std::cout << o.file << ": ok\n";
+  return 0;
+}
+
+}  // namespace imasim::cli

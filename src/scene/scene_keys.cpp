@@ -1,0 +1,188 @@
+#include "scene/scene_keys.hpp"
+
+#include <array>
+#include <limits>
+
+namespace imasim::scene {
+
+namespace {
+
+using P = ThoraxSceneParams;
+constexpr double kBig = 1e9;
+
+// Keys of the two strand sets differ only in the set they address.
+#define IMASIM_STRAND_KEYS(table, member)                                                         \
+  SceneKey{table ".strands_per_face",                                                             \
+           RealRef([](P& p) { return &p.patch.member.generation.strands_per_face; }), 0, 20,      \
+           "sigma: strands per facing face; the fraction is the chance of one more (2.3.4)"},     \
+      SceneKey{table ".segments",                                                                 \
+               CountRef([](P& p) { return &p.patch.member.generation.segments; }), 1, 64,         \
+               "n: segments per strand (2.3.4)"},                                                 \
+      SceneKey{table ".max_length_m",                                                             \
+               RealRef([](P& p) { return &p.patch.member.generation.max_length; }), 0, 1,         \
+               "d_max; 0 = eq. 6, the distance between the surfaces' centres"},                   \
+      SceneKey{table ".max_angle_rad",                                                            \
+               RealRef([](P& p) { return &p.patch.member.generation.max_angle; }), 0, 1.5,        \
+               "theta: largest deviation of a strand from its face normal"},                      \
+      SceneKey{table ".seed", SeedRef([](P& p) { return &p.patch.member.generation.seed; }), 0,   \
+               9e18, "random seed of the strand generator"},                                      \
+      SceneKey{table ".diameter_m", RealRef([](P& p) { return &p.patch.member.diameter; }), 1e-5, \
+               0.02, "drawn diameter of a strand particle"},                                      \
+      SceneKey{table ".total_mass_kg", RealRef([](P& p) { return &p.patch.member.total_mass; }),  \
+               1e-6, 10, "mass spread over the interior strand particles (eq. 5)"},               \
+      SceneKey{table ".compliance_m_per_n",                                                       \
+               RealRef([](P& p) { return &p.patch.member.material.compliance; }), 0, 1,           \
+               "XPBD compliance of each strand segment"},                                         \
+      SceneKey{table ".linear_damping_kg_per_s",                                                  \
+               RealRef([](P& p) { return &p.patch.member.linear_damping; }), 0, 100,              \
+               "k_l of eq. 4"},                                                                   \
+      SceneKey{table ".xsph_coefficient",                                                         \
+               RealRef([](P& p) { return &p.patch.member.xsph_coefficient; }), 0, 1,              \
+               "share of the neighbours' mean velocity taken per step (XSPH)"},                   \
+      SceneKey {                                                                                  \
+    table ".xsph_radius_m", RealRef([](P& p) { return &p.patch.member.xsph_radius; }), 1e-5, 0.1, \
+        "XSPH neighbourhood radius at rest"                                                       \
+  }
+
+const SceneKey kKeys[] = {
+    {"solver.dt_s", RealRef([](P& p) { return &p.patch.solver.dt; }), 1e-5, 0.1,
+     "step; the paper's 5 ms (2.3.1)"},
+    {"solver.substeps", CountRef([](P& p) { return &p.patch.solver.substeps; }), 1, 1000,
+     "substeps per step"},
+    {"solver.iterations", CountRef([](P& p) { return &p.patch.solver.iterations; }), 1, 1000,
+     "projection sweeps per substep; the paper's 5 (2.3.1)"},
+    {"solver.max_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.max_speed; }), 1e-6, 1e6,
+     "divergence guard: a faster particle fails the step"},
+
+    {"heart.beating", BoolRef([](P& p) { return &p.playback.beating; }), 0, 0,
+     "false = the paper's static group"},
+    {"heart.heart_rate_bpm", RealRef([](P& p) { return &p.playback.heart_rate_bpm; }), 20, 250,
+     "heart rate"},
+    {"heart.static_phase", RealRef([](P& p) { return &p.playback.static_phase; }), 0, 1,
+     "cycle fraction of the static heart and of the beating heart's start (paper: 70 %)"},
+    {"heart.phases", CountRef([](P& p) { return &p.heart.phases; }), 3, 200,
+     "keyframes per cycle (paper: 11)"},
+    {"heart.ejection_fraction", RealRef([](P& p) { return &p.heart.ejection_fraction; }), 0.05,
+     0.95, "(EDV - ESV) / EDV"},
+    {"heart.systole_fraction", RealRef([](P& p) { return &p.heart.systole_fraction; }), 0.05, 0.95,
+     "share of the cycle spent ejecting"},
+    {"heart.longitudinal_shortening",
+     RealRef([](P& p) { return &p.heart.longitudinal_shortening; }), 0, 0.5,
+     "base-apex shortening at end-systole"},
+    {"heart.twist_rad", RealRef([](P& p) { return &p.heart.twist; }), -1.5, 1.5,
+     "apex rotation against the base at end-systole"},
+    {"heart.centre_m", Vec3Ref([](P& p) { return &p.heart.centre; }), 0, 0,
+     "left-ventricle centre"},
+    {"heart.long_axis", Vec3Ref([](P& p) { return &p.heart.long_axis; }), 0, 0,
+     "direction base -> apex"},
+    {"heart.lateral", Vec3Ref([](P& p) { return &p.heart.lateral; }), 0, 0,
+     "direction towards the right ventricle"},
+    {"heart.lv_length_m", RealRef([](P& p) { return &p.heart.lv_length; }), 0.01, 0.3,
+     "LV base-apex length at end-diastole"},
+    {"heart.lv_radius_m", RealRef([](P& p) { return &p.heart.lv_radius; }), 0.005, 0.1,
+     "LV radius at end-diastole"},
+    {"heart.rv_length_m", RealRef([](P& p) { return &p.heart.rv_length; }), 0.01, 0.3,
+     "RV base-apex length at end-diastole"},
+    {"heart.rv_radius_m", RealRef([](P& p) { return &p.heart.rv_radius; }), 0.005, 0.1,
+     "RV radius at end-diastole"},
+    {"heart.rv_offset_m", RealRef([](P& p) { return &p.heart.rv_offset; }), 0, 0.1,
+     "RV centre from the LV centre, along lateral"},
+    {"heart.rings", CountRef([](P& p) { return &p.heart.rings; }), 3, 128,
+     "surface rings per ventricle"},
+    {"heart.segments", CountRef([](P& p) { return &p.heart.segments; }), 3, 256,
+     "surface segments per ring"},
+
+    {"chest_wall.origin_m", Vec3Ref([](P& p) { return &p.patch.wall.origin; }), 0, 0,
+     "a point on the cylinder axis (start of the patch)"},
+    {"chest_wall.axis", Vec3Ref([](P& p) { return &p.patch.wall.axis; }), 0, 0, "cylinder axis"},
+    {"chest_wall.reference", Vec3Ref([](P& p) { return &p.patch.wall.reference; }), 0, 0,
+     "direction of angle 0, normal to the axis"},
+    {"chest_wall.radius_m", RealRef([](P& p) { return &p.patch.wall.radius; }), 0.01, 1,
+     "curvature radius of the chest wall"},
+    {"chest_wall.angle0_rad", RealRef([](P& p) { return &p.patch.wall.angle0; }), -3.2, 3.2,
+     "start of the angular span"},
+    {"chest_wall.angle1_rad", RealRef([](P& p) { return &p.patch.wall.angle1; }), -3.2, 3.2,
+     "end of the angular span"},
+    {"chest_wall.length_m", RealRef([](P& p) { return &p.patch.wall.length; }), 0.01, 1,
+     "length along the axis"},
+    {"chest_wall.nu", CountRef([](P& p) { return &p.patch.wall.nu; }), 2, 1024, "vertices around"},
+    {"chest_wall.nv", CountRef([](P& p) { return &p.patch.wall.nv; }), 2, 1024, "vertices along"},
+
+    {"fascia.width_m", RealRef([](P& p) { return &p.patch.fascia.width; }), 0.005, 1, "w (2.3.1)"},
+    {"fascia.height_m", RealRef([](P& p) { return &p.patch.fascia.height; }), 0.005, 1,
+     "h (2.3.1)"},
+    {"fascia.nx", CountRef([](P& p) { return &p.patch.fascia.nx; }), 3, 1024, "vertices across"},
+    {"fascia.ny", CountRef([](P& p) { return &p.patch.fascia.ny; }), 3, 1024, "vertices along"},
+    {"fascia.origin_m", Vec3Ref([](P& p) { return &p.patch.fascia.pose.translation; }), 0, 0,
+     "corner of the rectangle (it lies in the x-z plane)"},
+    {"fascia.total_mass_kg", RealRef([](P& p) { return &p.patch.fascia.object.total_mass; }), 1e-6,
+     10, "M_total of eq. 5"},
+    {"fascia.linear_damping_kg_per_s",
+     RealRef([](P& p) { return &p.patch.fascia.object.linear_damping; }), 0, 100,
+     "k_l of eq. 4 (paper: 0.03)"},
+    {"fascia.angular_damping_kg_m2_per_s",
+     RealRef([](P& p) { return &p.patch.fascia.object.angular_damping; }), 0, 100,
+     "k_c of eq. 4 (paper: 0.01)"},
+    {"fascia.stretch_compliance_m_per_n",
+     RealRef([](P& p) { return &p.patch.fascia.object.stretch.compliance; }), 0, 1,
+     "XPBD compliance of the distance constraints (eq. 2)"},
+    {"fascia.bending_compliance_rad_per_n_m",
+     RealRef([](P& p) { return &p.patch.fascia.object.bend.compliance; }), 0, 1e6,
+     "XPBD compliance of the dihedral constraints (eq. 3)"},
+
+    {"vessel.centerline_m", PolylineRef([](P& p) { return &p.patch.vessel.centerline; }), 0, 0,
+     "IMA centerline, at least two points"},
+    {"vessel.radius_m", RealRef([](P& p) { return &p.patch.vessel.radius; }), 2e-4, 0.01,
+     "IMA radius (about 1-1.5 mm)"},
+    {"vessel.coarse_segments", CountRef([](P& p) { return &p.patch.vessel.coarse_segments; }), 3,
+     64, "simulated tube: vertices per ring"},
+    {"vessel.coarse_rings", CountRef([](P& p) { return &p.patch.vessel.coarse_rings; }), 2, 4096,
+     "simulated tube: rings"},
+    {"vessel.fine_segments", CountRef([](P& p) { return &p.patch.vessel.fine_segments; }), 3, 256,
+     "visual tube: vertices per ring"},
+    {"vessel.fine_rings", CountRef([](P& p) { return &p.patch.vessel.fine_rings; }), 2, 16384,
+     "visual tube: rings"},
+    {"vessel.total_mass_kg", RealRef([](P& p) { return &p.patch.vessel.object.total_mass; }), 1e-6,
+     10, "M_total of eq. 5"},
+    {"vessel.stretch_compliance_m_per_n",
+     RealRef([](P& p) { return &p.patch.vessel.object.stretch.compliance; }), 0, 1,
+     "stiff distance constraints (2.3.2)"},
+    {"vessel.bending_compliance_rad_per_n_m",
+     RealRef([](P& p) { return &p.patch.vessel.object.bend.compliance; }), 0, 1e6,
+     "soft dihedral constraints (2.3.2)"},
+
+    IMASIM_STRAND_KEYS("ima_fat", ima_fat),
+    IMASIM_STRAND_KEYS("fascia_fat", fascia_fat),
+
+    {"coupling.lambda_max_m", RealRef([](P& p) { return &p.patch.coupling_lambda_max; }), 0, 1,
+     "lambda_max of eq. 8-9"},
+    {"coupling.radius_m", RealRef([](P& p) { return &p.patch.coupling_radius; }), 1e-5, 0.1,
+     "strand particles this close to a surface are coupled to it"},
+
+    {"ports.target_m", Vec3Ref([](P& p) { return &p.port_target; }), 0, 0, "where every port aims"},
+    {"ports.camera_m", Vec3Ref([](P& p) { return &p.ports[0].position; }), 0, 0,
+     "camera port on the left chest wall (Fig. 2e)"},
+    {"ports.left_instrument_m", Vec3Ref([](P& p) { return &p.ports[1].position; }), 0, 0,
+     "left instrument port"},
+    {"ports.right_instrument_m", Vec3Ref([](P& p) { return &p.ports[2].position; }), 0, 0,
+     "right instrument port"},
+    {"ports.assistant_m", Vec3Ref([](P& p) { return &p.ports[3].position; }), 0, 0,
+     "assistant port"},
+};
+
+#undef IMASIM_STRAND_KEYS
+
+constexpr std::array<std::string_view, 9> kTables = {"solver",     "heart",    "chest_wall",
+                                                     "fascia",     "vessel",   "ima_fat",
+                                                     "fascia_fat", "coupling", "ports"};
+
+}  // namespace
+
+std::span<const SceneKey> scene_keys() {
+  return kKeys;
+}
+std::span<const std::string_view> scene_tables() {
+  return kTables;
+}
+
+}  // namespace imasim::scene
