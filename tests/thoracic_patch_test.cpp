@@ -32,12 +32,13 @@ TEST(ThoracicPatch, EveryStrandHasNSegmentsAndItsEndsFixedOnTheSurfaces) {
       }
     }
   }
-  // Mesh objects: edges of fascia and IMA; the wall is static (no constraints); strands: n each.
-  std::size_t mesh_edges = 0;
-  for (std::uint32_t m : {patch.fascia, patch.ima}) {
-    const MeshObject& o = w.meshes[m];
-    mesh_edges += o.triangles.size() * 3 / 2 + (m == patch.fascia ? 2 * (11 + 39) / 2 : 6);
-  }
+  // A distance constraint per edge of the fascia and the IMA (the wall is static), n per strand.
+  // Edges of a mesh with F faces and B boundary edges: (3F + B) / 2. The 12 x 40 fascia has
+  // 2 (11 + 39) boundary edges; the open 6-segment tube two rings of 6.
+  const std::size_t fascia_boundary = 2 * (11 + 39), ima_boundary = 2 * 6;
+  const std::size_t mesh_edges =
+      (3 * w.meshes[patch.fascia].triangles.size() + fascia_boundary) / 2 +
+      (3 * w.meshes[patch.ima].triangles.size() + ima_boundary) / 2;
   EXPECT_EQ(w.state.constraints.distance.size(), mesh_edges + strand_constraints);
   EXPECT_EQ(w.visuals[patch.ima_visual].positions.size(), 4 * w.meshes[patch.ima].particle_count);
 }
