@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake make pkg-config git clang-format
-  libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev
+  libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

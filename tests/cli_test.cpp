@@ -96,6 +96,20 @@ TEST(RunCommand, StaticHeartAndClearErrors) {
   EXPECT_NE(bad.output.find("--heart-rate"), std::string::npos);
 }
 
+TEST(RunCommand, PatientSeedGivesAnotherReproduciblePatient) {
+  const std::string args = "run --headless --seconds 0.1 --threads 1 --json";
+  const auto typical = nlohmann::json::parse(run_imasim(args).output);
+  const auto seven = nlohmann::json::parse(run_imasim(args + " --patient-seed 7").output);
+  const auto again = nlohmann::json::parse(run_imasim(args + " --patient-seed 7").output);
+  EXPECT_EQ(typical["patient_seed"], 0);
+  EXPECT_EQ(seven["patient_seed"], 7);
+  EXPECT_EQ(seven["status"], "ok");
+  EXPECT_EQ(seven["state_hash"], again["state_hash"]);
+  EXPECT_NE(seven["state_hash"], typical["state_hash"]);
+  EXPECT_NE(seven["ima_depth_m"], typical["ima_depth_m"]);
+  EXPECT_EQ(typical["skeleton_meshes"].get<int>() % 2, 1);  // sternum + cartilage/rib pairs
+}
+
 TEST(SceneCommand, PrintDefaultChecksAndRunsLikeTheBuiltInScene) {
   const std::string path = testing::TempDir() + "imasim_default_scene.toml";
   const Outcome printed = run_imasim("scene print-default > " + path);
@@ -116,18 +130,33 @@ TEST(SceneCommand, CheckListsProblemsWithFileLineAndKey) {
   {
     FILE* f = std::fopen(path.c_str(), "w");
     ASSERT_NE(f, nullptr);
-    std::fputs("[heart]\nheart_rate_bpm = 500\n[fascia]\nnxx = 4\n", f);
+    std::fputs(
+        "[heart]\nheart_rate_bpm = 500\nphase_files = [\"no_such_phase.obj\", \"p1.obj\"]\n"
+        "[fascia]\nnxx = 4\n",
+        f);
     std::fclose(f);
   }
   const Outcome r = run_imasim("scene check " + path);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find(path + ":2: key 'heart.heart_rate_bpm'"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(path + ":4: key 'fascia.nxx': unknown key; did you mean 'fascia.nx'?"),
+  EXPECT_NE(r.output.find(path + ":5: key 'fascia.nxx': unknown key; did you mean 'fascia.nx'?"),
             std::string::npos)
       << r.output;
+  // Once the keys are sound, the files they name are checked too.
+  {
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("[heart]\nphase_files = [\"no_such_phase.obj\", \"p1.obj\"]\n", f);
+    std::fclose(f);
+  }
+  const Outcome mesh = run_imasim("scene check " + path);
+  EXPECT_EQ(mesh.exit_code, 1);
+  EXPECT_NE(mesh.output.find(path + ":2: key 'heart.phase_files': "), std::string::npos)
+      << mesh.output;
+  EXPECT_NE(mesh.output.find("no_such_phase.obj: no such file"), std::string::npos) << mesh.output;
   const Outcome run = run_imasim("run --headless --scene " + path);
   EXPECT_EQ(run.exit_code, 2);
-  EXPECT_NE(run.output.find("heart.heart_rate_bpm"), std::string::npos);
+  EXPECT_NE(run.output.find("heart.phase_files"), std::string::npos) << run.output;
 }
 
 TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {

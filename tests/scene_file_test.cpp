@@ -35,10 +35,12 @@ TEST(SceneFile, KeysNotGivenKeepTheirDefaults) {
   EXPECT_EQ(p.heart.phases, 11u);
   EXPECT_EQ(p.patch.fascia.nx, default_thorax_scene_params().patch.fascia.nx);
   const ThoraxSceneParams q = parse_scene(
-      "[vessel]\ncenterline_m = [[0, 0, 0], [0.01, 0, 0.05], [0, 0, 0.15]]\n[ima_fat]\nseed = 7\n",
+      "[anatomy]\nsternum_position_m = [-0.03, 0.001, 0.002]\npatient_seed = 12\n"
+      "[ima_fat]\nseed = 7\n",
       "s.toml");
-  ASSERT_EQ(q.patch.vessel.centerline.size(), 3u);
-  EXPECT_EQ(q.patch.vessel.centerline[1], Vec3(0.01, 0, 0.05));
+  EXPECT_EQ(q.anatomy.sternum_position, Vec3(-0.03, 0.001, 0.002));
+  EXPECT_EQ(q.anatomy.patient_seed, 12u);
+  EXPECT_EQ(q.anatomy.ima_depth, default_thorax_scene_params().anatomy.ima_depth);
   EXPECT_EQ(q.patch.ima_fat.generation.seed, 7u);
 }
 
@@ -53,16 +55,33 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "bad.toml:2: key 'heart.hart_rate_bpm': unknown key; did you mean 'heart.heart_rate_bpm'?"},
       {"[heart]\n\nejection_fraction = 1.5\n",
        "bad.toml:3: key 'heart.ejection_fraction': expected a number in [0.05, 0.95], got 1.5"},
-      {"[heart]\ncentre_m = [1, 2]\n", "bad.toml:2: key 'heart.centre_m': expected [x, y, z]"},
+      {"[anatomy]\nheart_offset_m = [1, 2]\n",
+       "bad.toml:2: key 'anatomy.heart_offset_m': expected [x, y, z]"},
+      {"[anatomy]\nima_lateral_offset_m = 0.2\n",
+       "bad.toml:2: key 'anatomy.ima_lateral_offset_m': expected a number in [0.01, 0.05], got "
+       "0.2"},
+      {"[anatomy]\nima_course_length_m = 0.1\n",
+       "bad.toml:2: key 'anatomy.ima_course_length_m': expected a number in [0.15, 0.3]"},
+      {"[anatomy]\nima_depth_m = 0.002\n[vessel]\nradius_m = 0.002\n",
+       "bad.toml:2: key 'anatomy.ima_depth_m': the IMA must lie at least 0.5 mm inside"},
+      {"[heart]\nlong_axis = [1, 0, 0]\nlateral = [2, 0, 0]\n",
+       "bad.toml:2: key 'heart.long_axis': the heart's long axis must be non-zero and not "
+       "parallel"},
+      {"[heart]\nphase_files = [\"/nonexistent/p0.obj\", \"/nonexistent/p1.obj\"]\n",
+       "bad.toml:2: key 'heart.phase_files': /nonexistent/p0.obj: no such file"},
+      {"[heart]\nphase_files = [\"/nonexistent/p0.obj\"]\n",
+       "bad.toml:2: key 'heart.phase_files': heart phase series: at least two phase files"},
+      {"[heart]\nphase_files = \"p0.obj\"\n",
+       "bad.toml:2: key 'heart.phase_files': expected an array of file names"},
+      {"[heart]\nphase_files = [\"p0.obj\", 3]\n",
+       "bad.toml:2: key 'heart.phase_files': entry 1 is not a file name"},
       {"[heart]\nbeating = 1\n", "bad.toml:2: key 'heart.beating': expected true or false"},
       {"[solver]\niterations = 2.5\n", "bad.toml:2: key 'solver.iterations': expected an integer"},
       {"[solver]\niterations = 0\n",
        "bad.toml:2: key 'solver.iterations': expected an integer in [1, 1000], got 0"},
       {"[solver]\ndt_s = \"fast\"\n", "bad.toml:2: key 'solver.dt_s': expected a number"},
-      {"[vessel]\ncenterline_m = [[0, 0, 0]]\n",
-       "bad.toml:2: key 'vessel.centerline_m': expected at least two"},
-      {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1]]\n",
-       "bad.toml:2: key 'vessel.centerline_m': point 1 is not [x, y, z]"},
+      {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1, 1]]\n",
+       "bad.toml:2: key 'vessel.centerline_m': unknown key"},
       {"\n[fasica]\nnx = 3\n", "bad.toml:2: unknown table 'fasica'; did you mean 'fascia'?"},
       {"heart_rate_bpm = 70\n",
        "bad.toml:1: key 'heart_rate_bpm': not inside a table; did you mean "

@@ -26,6 +26,8 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
                   "Heart rate (beats per minute); default: the scene's (75)")
       ->check(CLI::Range(20.0, 250.0));
+  cmd->add_option("--patient-seed", opt->patient_seed,
+                  "Virtual patient: 0 = the scene's anatomy, else a seeded variation of it");
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
@@ -51,7 +53,14 @@ int run_run_command(const RunOptions& o) {
   // The command line overrides the file where given.
   if (o.static_heart) params.playback.beating = false;
   if (o.heart_rate_bpm > 0) params.playback.heart_rate_bpm = Real(o.heart_rate_bpm);
-  scene::ThoraxScene scene = scene::make_thorax_scene(params);
+  if (o.patient_seed) params.anatomy.patient_seed = *o.patient_seed;
+  scene::ThoraxScene scene;
+  try {
+    scene = scene::make_thorax_scene(params);
+  } catch (const std::exception& e) {
+    std::cerr << "imasim run: cannot build the scene: " << e.what() << '\n';
+    return 2;
+  }
   physics::Executor exec(o.threads);
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
@@ -90,6 +99,11 @@ int run_run_command(const RunOptions& o) {
   out["scene"] = o.scene_file.empty() ? std::string("built-in thorax") : o.scene_file;
   out["heart"] = params.playback.beating ? "beating" : "static";
   out["heart_rate_bpm"] = params.playback.heart_rate_bpm;
+  out["heart_source"] = params.heart_series.phase_files.empty() ? "procedural" : "phase files";
+  out["patient_seed"] = scene.patient.patient_seed;
+  out["ima_depth_m"] = scene.patient.ima_depth;
+  out["ima_lateral_offset_m"] = scene.patient.ima_lateral_offset;
+  out["skeleton_meshes"] = scene.skeleton.size();
   out["particles"] = w.state.particles.size();
   out["distance_constraints"] = w.state.constraints.distance.size();
   out["dihedral_constraints"] = w.state.constraints.dihedral.size();

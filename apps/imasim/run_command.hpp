@@ -3,7 +3,9 @@
 // and reports timings, the heart phase, the motion reaching the IMA, a state hash and any
 // divergence.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace imasim::cli {
@@ -13,7 +15,8 @@ struct RunOptions {
   std::string scene_file;  // empty: the built-in scene
   double seconds = 5;
   bool static_heart = false;
-  double heart_rate_bpm = 0;  // 0: the scene's
+  double heart_rate_bpm = 0;                  // 0: the scene's
+  std::optional<std::uint64_t> patient_seed;  // unset: the scene's
   int threads = 0;
   bool json = false;
 };

@@ -6,10 +6,13 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
+#include "scene/heart_series.hpp"
 #include "scene/scene_keys.hpp"
 
 namespace imasim::scene {
@@ -64,6 +67,42 @@ struct Reader {
   const std::string& file;
   ThoraxSceneParams& params;
   std::vector<std::string> errors;
+  std::map<std::string, std::uint32_t> lines;  // line of each key given in the file
+
+  // An error about keys that constrain each other, at the first of them given in the file.
+  void cross_error(std::initializer_list<std::string> keys, const std::string& what) {
+    for (const std::string& k : keys) {
+      if (auto it = lines.find(k); it != lines.end()) {
+        errors.push_back(file + ":" + std::to_string(it->second) + ": key '" + k + "': " + what);
+        return;
+      }
+    }
+    errors.push_back(file + ":1: key '" + *keys.begin() + "': " + what);
+  }
+
+  // Checks across keys, and the files the scene names.
+  void check_whole() {
+    const Real gap = params.anatomy.ima_depth - params.patch.vessel.radius;
+    if (!(gap >= Real(0.0005))) {
+      cross_error({"anatomy.ima_depth_m", "vessel.radius_m"},
+                  "the IMA must lie at least 0.5 mm inside the chest wall: ima_depth_m " +
+                      real_text(params.anatomy.ima_depth) + " <= vessel.radius_m " +
+                      real_text(params.patch.vessel.radius) + " + 0.0005");
+    }
+    const Vec3 axis = params.heart.long_axis, lateral = params.heart.lateral;
+    if (!(axis.norm() > 0) ||
+        !(axis.cross(lateral).norm() > Real(1e-6) * axis.norm() * lateral.norm())) {
+      cross_error({"heart.long_axis", "heart.lateral"},
+                  "the heart's long axis must be non-zero and not parallel to its lateral axis");
+    }
+    if (!params.heart_series.phase_files.empty()) {
+      try {
+        load_heart_series(params.heart_series);
+      } catch (const MeshFileError& e) {
+        cross_error({"heart.phase_files"}, e.what());
+      }
+    }
+  }
 
   void error(const toml::node& node, const std::string& path, const std::string& what) {
     errors.push_back(file + ":" + std::to_string(node.source().begin.line) + ": key '" + path +
@@ -93,8 +132,18 @@ struct Reader {
     return v;
   }
 
+  // A path as written, made absolute against the scene file's folder.
+  std::string resolve(const std::string& written) const {
+    const std::filesystem::path p(written);
+    if (p.is_absolute()) return p.lexically_normal().string();
+    return std::filesystem::absolute(std::filesystem::path(file).parent_path() / p)
+        .lexically_normal()
+        .string();
+  }
+
   void read(const SceneKey& key, const toml::node& n) {
     const std::string path(key.path);
+    lines[path] = n.source().begin.line;
     std::visit(
         [&](auto ref) {
           using Ref = decltype(ref);
@@ -124,14 +173,15 @@ struct Reader {
             *ref(params) = *v;
           } else {
             const toml::array* a = n.as_array();
-            std::vector<Vec3> points;
-            for (std::size_t i = 0; a != nullptr && i < a->size(); ++i) {
-              const auto v = vec3(*a->get(i));
-              if (!v) return error(n, path, "point " + std::to_string(i) + " is not [x, y, z]");
-              points.push_back(*v);
+            if (a == nullptr) return error(n, path, "expected an array of file names");
+            std::vector<std::string> paths;
+            for (std::size_t i = 0; i < a->size(); ++i) {
+              const auto v = a->get(i)->value<std::string>();
+              if (!a->get(i)->is_string() || !v || v->empty())
+                return error(n, path, "entry " + std::to_string(i) + " is not a file name");
+              paths.push_back(resolve(*v));
             }
-            if (points.size() < 2) return error(n, path, "expected at least two [x, y, z] points");
-            *ref(params) = points;
+            *ref(params) = paths;
           }
         },
         key.ref);
@@ -189,6 +239,16 @@ std::string vec3_text(const Vec3& v) {
   return out;
 }
 
+// A TOML basic string.
+std::string string_text(const std::string& v) {
+  std::string out = "\"";
+  for (char c : v) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
 }  // namespace
 
 ThoraxSceneParams parse_scene(const std::string& text, const std::string& name) {
@@ -200,8 +260,9 @@ ThoraxSceneParams parse_scene(const std::string& text, const std::string& name) 
     throw SceneFileError(
         {name + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description())});
   }
-  Reader reader{name, params, {}};
+  Reader reader{name, params, {}, {}};
   reader.walk(table, "");
+  if (reader.errors.empty()) reader.check_whole();
   // toml++ visits keys in sorted order; report in file order.
   std::stable_sort(
       reader.errors.begin(), reader.errors.end(), [&](const std::string& x, const std::string& y) {
@@ -241,9 +302,9 @@ std::string print_scene(const ThoraxSceneParams& const_params) {
               out << vec3_text(*ref(params));
             } else {
               out << "[";
-              const std::vector<Vec3>& points = *ref(params);
-              for (std::size_t i = 0; i < points.size(); ++i)
-                out << (i ? ", " : "") << vec3_text(points[i]);
+              const std::vector<std::string>& paths = *ref(params);
+              for (std::size_t i = 0; i < paths.size(); ++i)
+                out << (i ? ", " : "") << string_text(paths[i]);
               out << "]";
             }
           },

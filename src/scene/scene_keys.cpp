@@ -18,9 +18,6 @@ constexpr double kBig = 1e9;
       SceneKey{table ".segments",                                                                 \
                CountRef([](P& p) { return &p.patch.member.generation.segments; }), 1, 64,         \
                "n: segments per strand (2.3.4)"},                                                 \
-      SceneKey{table ".max_length_m",                                                             \
-               RealRef([](P& p) { return &p.patch.member.generation.max_length; }), 0, 1,         \
-               "d_max; 0 = eq. 6, the distance between the surfaces' centres"},                   \
       SceneKey{table ".max_angle_rad",                                                            \
                RealRef([](P& p) { return &p.patch.member.generation.max_angle; }), 0, 1.5,        \
                "theta: largest deviation of a strand from its face normal"},                      \
@@ -45,6 +42,37 @@ constexpr double kBig = 1e9;
   }
 
 const SceneKey kKeys[] = {
+    {"anatomy.patient_seed", SeedRef([](P& p) { return &p.anatomy.patient_seed; }), 0, 9e18,
+     "0 = the typical patient below; else a virtual patient varied about it (docs/anatomy.md)"},
+    {"anatomy.sternum_position_m", Vec3Ref([](P& p) { return &p.anatomy.sternum_position; }), 0, 0,
+     "midline of the sternum's inner surface at the IMA's cranial end"},
+    {"anatomy.sternum_width_m", RealRef([](P& p) { return &p.anatomy.sternum_width; }), 0.015, 0.06,
+     "sternum width (typical 25-40 mm)"},
+    {"anatomy.ima_lateral_offset_m", RealRef([](P& p) { return &p.anatomy.ima_lateral_offset; }),
+     0.01, 0.05, "left IMA from the sternal midline (typical 20-30 mm)"},
+    {"anatomy.ima_lateral_drift_m", RealRef([](P& p) { return &p.anatomy.ima_lateral_drift; }),
+     -0.02, 0.03, "further lateral offset at the caudal end of the course"},
+    {"anatomy.ima_depth_m", RealRef([](P& p) { return &p.anatomy.ima_depth; }), 0.002, 0.015,
+     "IMA centre under the chest wall's inner surface"},
+    {"anatomy.ima_course_length_m", RealRef([](P& p) { return &p.anatomy.ima_course_length; }),
+     0.15, 0.3, "simulated IMA course, >= 15 cm so a 10 cm segment can be harvested"},
+    {"anatomy.chest_wall_radius_m", RealRef([](P& p) { return &p.anatomy.chest_wall_radius; }),
+     0.06, 0.5, "transverse curvature radius of the chest wall's inner surface"},
+    {"anatomy.fat_thickness_m", RealRef([](P& p) { return &p.anatomy.fat_thickness; }), 0.004, 0.03,
+     "chest wall to fascia"},
+    {"anatomy.fascia_width_m", RealRef([](P& p) { return &p.anatomy.fascia_width; }), 0.01, 0.1,
+     "fascia extent across the IMA (w of 2.3.1)"},
+    {"anatomy.fascia_length_m", RealRef([](P& p) { return &p.anatomy.fascia_length; }), 0.05, 0.3,
+     "fascia extent along the IMA (h of 2.3.1)"},
+    {"anatomy.rib_spacing_m", RealRef([](P& p) { return &p.anatomy.rib_spacing; }), 0.012, 0.05,
+     "cranio-caudal pitch of the ribs (display)"},
+    {"anatomy.heart_scale", RealRef([](P& p) { return &p.anatomy.heart_scale; }), 0.5, 2,
+     "on the procedural heart's lengths and radii"},
+    {"anatomy.heart_offset_m", Vec3Ref([](P& p) { return &p.anatomy.heart_offset; }), 0, 0,
+     "LV centre from the IMA's mid-course centre"},
+    {"anatomy.heart_tilt_rad", Vec3Ref([](P& p) { return &p.anatomy.heart_tilt; }), 0, 0,
+     "axis * angle turning the heart's orientation"},
+
     {"solver.dt_s", RealRef([](P& p) { return &p.patch.solver.dt; }), 1e-5, 0.1,
      "step; the paper's 5 ms (2.3.1)"},
     {"solver.substeps", CountRef([](P& p) { return &p.patch.solver.substeps; }), 1, 1000,
@@ -71,8 +99,6 @@ const SceneKey kKeys[] = {
      "base-apex shortening at end-systole"},
     {"heart.twist_rad", RealRef([](P& p) { return &p.heart.twist; }), -1.5, 1.5,
      "apex rotation against the base at end-systole"},
-    {"heart.centre_m", Vec3Ref([](P& p) { return &p.heart.centre; }), 0, 0,
-     "left-ventricle centre"},
     {"heart.long_axis", Vec3Ref([](P& p) { return &p.heart.long_axis; }), 0, 0,
      "direction base -> apex"},
     {"heart.lateral", Vec3Ref([](P& p) { return &p.heart.lateral; }), 0, 0,
@@ -87,34 +113,26 @@ const SceneKey kKeys[] = {
      "RV radius at end-diastole"},
     {"heart.rv_offset_m", RealRef([](P& p) { return &p.heart.rv_offset; }), 0, 0.1,
      "RV centre from the LV centre, along lateral"},
+    {"heart.phase_files", PathListRef([](P& p) { return &p.heart_series.phase_files; }), 0, 0,
+     "closed surface meshes (OBJ/STL/PLY/glTF), one per phase in cycle order, one topology; "
+     "relative to this file; empty = the procedural heart"},
+    {"heart.mesh_scale", RealRef([](P& p) { return &p.heart_series.transform.scale; }), 1e-6, 1e3,
+     "phase files' units to m (0.001: millimetres)"},
+    {"heart.mesh_rotation_rad", Vec3Ref([](P& p) { return &p.heart_series.transform.rotation; }), 0,
+     0, "axis * angle turning the phase meshes"},
+    {"heart.mesh_translation_m",
+     Vec3Ref([](P& p) { return &p.heart_series.transform.translation; }), 0, 0,
+     "moves the phase meshes after scale and rotation"},
     {"heart.rings", CountRef([](P& p) { return &p.heart.rings; }), 3, 128,
      "surface rings per ventricle"},
     {"heart.segments", CountRef([](P& p) { return &p.heart.segments; }), 3, 256,
      "surface segments per ring"},
 
-    {"chest_wall.origin_m", Vec3Ref([](P& p) { return &p.patch.wall.origin; }), 0, 0,
-     "a point on the cylinder axis (start of the patch)"},
-    {"chest_wall.axis", Vec3Ref([](P& p) { return &p.patch.wall.axis; }), 0, 0, "cylinder axis"},
-    {"chest_wall.reference", Vec3Ref([](P& p) { return &p.patch.wall.reference; }), 0, 0,
-     "direction of angle 0, normal to the axis"},
-    {"chest_wall.radius_m", RealRef([](P& p) { return &p.patch.wall.radius; }), 0.01, 1,
-     "curvature radius of the chest wall"},
-    {"chest_wall.angle0_rad", RealRef([](P& p) { return &p.patch.wall.angle0; }), -3.2, 3.2,
-     "start of the angular span"},
-    {"chest_wall.angle1_rad", RealRef([](P& p) { return &p.patch.wall.angle1; }), -3.2, 3.2,
-     "end of the angular span"},
-    {"chest_wall.length_m", RealRef([](P& p) { return &p.patch.wall.length; }), 0.01, 1,
-     "length along the axis"},
     {"chest_wall.nu", CountRef([](P& p) { return &p.patch.wall.nu; }), 2, 1024, "vertices around"},
     {"chest_wall.nv", CountRef([](P& p) { return &p.patch.wall.nv; }), 2, 1024, "vertices along"},
 
-    {"fascia.width_m", RealRef([](P& p) { return &p.patch.fascia.width; }), 0.005, 1, "w (2.3.1)"},
-    {"fascia.height_m", RealRef([](P& p) { return &p.patch.fascia.height; }), 0.005, 1,
-     "h (2.3.1)"},
     {"fascia.nx", CountRef([](P& p) { return &p.patch.fascia.nx; }), 3, 1024, "vertices across"},
     {"fascia.ny", CountRef([](P& p) { return &p.patch.fascia.ny; }), 3, 1024, "vertices along"},
-    {"fascia.origin_m", Vec3Ref([](P& p) { return &p.patch.fascia.pose.translation; }), 0, 0,
-     "corner of the rectangle (it lies in the x-z plane)"},
     {"fascia.total_mass_kg", RealRef([](P& p) { return &p.patch.fascia.object.total_mass; }), 1e-6,
      10, "M_total of eq. 5"},
     {"fascia.linear_damping_kg_per_s",
@@ -130,8 +148,6 @@ const SceneKey kKeys[] = {
      RealRef([](P& p) { return &p.patch.fascia.object.bend.compliance; }), 0, 1e6,
      "XPBD compliance of the dihedral constraints (eq. 3)"},
 
-    {"vessel.centerline_m", PolylineRef([](P& p) { return &p.patch.vessel.centerline; }), 0, 0,
-     "IMA centerline, at least two points"},
     {"vessel.radius_m", RealRef([](P& p) { return &p.patch.vessel.radius; }), 2e-4, 0.01,
      "IMA radius (about 1-1.5 mm)"},
     {"vessel.coarse_segments", CountRef([](P& p) { return &p.patch.vessel.coarse_segments; }), 3,
@@ -154,6 +170,11 @@ const SceneKey kKeys[] = {
     IMASIM_STRAND_KEYS("ima_fat", ima_fat),
     IMASIM_STRAND_KEYS("fascia_fat", fascia_fat),
 
+    {"ima_fat.reach", RealRef([](P& p) { return &p.ima_fat_reach; }), 1, 10,
+     "d_max as a multiple of the vessel-to-wall gap"},
+    {"fascia_fat.reach", RealRef([](P& p) { return &p.fascia_fat_reach; }), 1, 10,
+     "d_max as a multiple of the fat thickness"},
+
     {"coupling.lambda_max_m", RealRef([](P& p) { return &p.patch.coupling_lambda_max; }), 0, 1,
      "lambda_max of eq. 8-9"},
     {"coupling.radius_m", RealRef([](P& p) { return &p.patch.coupling_radius; }), 1e-5, 0.1,
@@ -172,9 +193,9 @@ const SceneKey kKeys[] = {
 
 #undef IMASIM_STRAND_KEYS
 
-constexpr std::array<std::string_view, 9> kTables = {"solver",     "heart",    "chest_wall",
-                                                     "fascia",     "vessel",   "ima_fat",
-                                                     "fascia_fat", "coupling", "ports"};
+constexpr std::array<std::string_view, 10> kTables = {"anatomy",  "solver", "heart",   "chest_wall",
+                                                      "fascia",   "vessel", "ima_fat", "fascia_fat",
+                                                      "coupling", "ports"};
 
 }  // namespace
 

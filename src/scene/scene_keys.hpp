@@ -4,6 +4,7 @@
 // one table drives parsing, validation, "did you mean" suggestions and `scene print-default`.
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
@@ -17,11 +18,11 @@ using CountRef = std::uint32_t* (*)(ThoraxSceneParams&);
 using SeedRef = std::uint64_t* (*)(ThoraxSceneParams&);
 using BoolRef = bool* (*)(ThoraxSceneParams&);
 using Vec3Ref = Vec3* (*)(ThoraxSceneParams&);
-using PolylineRef = std::vector<Vec3>* (*)(ThoraxSceneParams&);
+using PathListRef = std::vector<std::string>* (*)(ThoraxSceneParams&);  // file paths
 
 struct SceneKey {
   std::string_view path;  // "table.key"
-  std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PolylineRef> ref;
+  std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PathListRef> ref;
   double min = 0, max = 0;  // inclusive range for numbers (unused for bool and vectors)
   std::string_view doc;
 };

@@ -7,19 +7,60 @@ namespace imasim::scene {
 ThoraxSceneParams default_thorax_scene_params() {
   ThoraxSceneParams p;
   p.patch = tissue::default_thoracic_patch_params();
-  // The heart lies under the left IMA, in the cavity (-y), its free wall touching the fascia's
-  // fat and pressing into them as it fills: LV centre 38 mm from the wall, radius 26 mm.
-  p.heart.centre = Vec3(Real(0.005), Real(-0.038), Real(0.09));
-  p.port_target = Vec3(0, Real(-0.004), Real(0.075));  // middle of the harvest segment
+  const ThoraxLayout layout = layout_thorax(p.anatomy, p.heart.long_axis, p.heart.lateral);
+  p.port_target = layout.ima_midpoint;  // middle of the harvest segment
   p.ports = default_ports(p.port_target);
+  // On the typical patient's left chest wall, 8-11 cm lateral of the midline, the pivot 1 cm
+  // into the wall; the ports are the surgeon's placement, fixed in the room, so a varied
+  // patient (patient_seed) does not move them. Order: camera, left, right, assistant.
+  const Real lateral[4] = {Real(0.10), Real(0.105), Real(0.095), Real(0.115)};
+  const Real level[4] = {Real(0.08), Real(0.0), Real(0.16), Real(0.2)};
+  for (std::size_t k = 0; k < p.ports.size() && k < 4; ++k) {
+    const Real x = p.anatomy.sternum_position.x() + lateral[k];
+    p.ports[k].position = wall_point(p.anatomy, x, p.anatomy.sternum_position.z() + level[k]) +
+                          Real(0.01) * wall_outward_normal(p.anatomy, x);
+  }
+  aim_ports(p.ports, p.port_target);
   return p;
+}
+
+tissue::ThoracicPatchParams lay_out_patch(const ThoraxSceneParams& params,
+                                          const AnatomyParams& patient,
+                                          const ThoraxLayout& layout) {
+  tissue::ThoracicPatchParams patch = params.patch;
+  const std::uint32_t nu = patch.wall.nu, nv = patch.wall.nv;
+  patch.wall = layout.wall;
+  patch.wall.nu = nu, patch.wall.nv = nv;
+  patch.vessel.centerline = layout.ima_centerline;
+  patch.fascia.width = patient.fascia_width;
+  patch.fascia.height = patient.fascia_length;
+  patch.fascia.pose = layout.fascia_pose;
+  patch.ima_fat.generation.max_length =
+      params.ima_fat_reach * (patient.ima_depth - patch.vessel.radius);
+  patch.fascia_fat.generation.max_length = params.fascia_fat_reach * patient.fat_thickness;
+  return patch;
 }
 
 ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   ThoraxScene scene;
-  scene.patch = tissue::make_thoracic_patch(params.patch);
-  scene.heart =
-      tissue::make_heart_field(tissue::make_procedural_heart(params.heart), params.playback);
+  scene.patient = vary_anatomy(params.anatomy);
+  scene.layout = layout_thorax(scene.patient, params.heart.long_axis, params.heart.lateral);
+  scene.patch = tissue::make_thoracic_patch(lay_out_patch(params, scene.patient, scene.layout));
+  tissue::HeartModel heart_model;
+  if (params.heart_series.phase_files.empty()) {
+    tissue::HeartParams heart = params.heart;
+    heart.centre = scene.layout.heart_centre;
+    heart.long_axis = scene.layout.heart_long_axis;
+    heart.lateral = scene.layout.heart_lateral;
+    const Real s = scene.patient.heart_scale;
+    heart.lv_length *= s, heart.lv_radius *= s, heart.rv_length *= s, heart.rv_radius *= s;
+    heart.rv_offset *= s;
+    heart_model = tissue::make_procedural_heart(heart);
+  } else {
+    heart_model = load_heart_series(params.heart_series);
+  }
+  scene.heart = tissue::make_heart_field(heart_model, params.playback);
+  scene.skeleton = make_chest_skeleton(scene.patient);
   tissue::TissueWorld& w = scene.patch.world;
   // Deep tissues anchored to the heart's motion: the chest wall, the vessel and the fat around
   // it, and the fascia (whose fixed perimeter is its anchor).

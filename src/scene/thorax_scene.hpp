@@ -1,12 +1,17 @@
 #pragma once
-// The thorax scene: the thoracic-wall patch (tissue/thoracic_patch.hpp) with the beating heart
-// under the left IMA and the ports. One step, in the order of the architecture: advance the
-// heart (or hold it, static mode) and move the anchored boundary with it; engine step, XSPH,
-// couplings; the heart as a collider; surfaces, the fine vessel and the strand ends.
+// The thorax scene: the procedural thorax of a virtual patient (scene/anatomy.hpp) laid out as
+// the thoracic-wall patch (tissue/thoracic_patch.hpp), the beating heart under the left IMA
+// (procedural, or a phase series from files), the display-only chest skeleton and the ports.
+// One step, in the order of the architecture: advance the heart (or hold it, static mode) and
+// move the anchored boundary with it; engine step, XSPH, couplings; the heart as a collider;
+// surfaces, the fine vessel and the strand ends.
 #include <vector>
 
 #include "physics/executor.hpp"
 #include "physics/step.hpp"
+#include "scene/anatomy.hpp"
+#include "scene/chest_skeleton.hpp"
+#include "scene/heart_series.hpp"
 #include "scene/ports.hpp"
 #include "tissue/heart_field.hpp"
 #include "tissue/thoracic_patch.hpp"
@@ -14,8 +19,17 @@
 namespace imasim::scene {
 
 struct ThoraxSceneParams {
+  AnatomyParams anatomy;
+  // Materials, resolutions and generation settings. Its geometry (the wall's placement and
+  // span, the vessel's centerline, the fascia's extent and pose, the strands' d_max) is laid
+  // out from the anatomy when the scene is made.
   tissue::ThoracicPatchParams patch;
+  // d_max of each strand set as a multiple of the gap its strands bridge: vessel surface to
+  // wall for the IMA's fat, fascia to wall for the fascia's (2.3.4).
+  Real ima_fat_reach = Real(2.2), fascia_fat_reach = Real(1.5);
+  // The procedural heart's shape and orientation; the anatomy places and scales it.
   tissue::HeartParams heart;
+  HeartSeriesSpec heart_series;  // phase files replace the procedural heart when given
   tissue::HeartPlayback playback;
   std::vector<Port> ports;          // camera, left and right instrument, assistant
   Vec3 port_target = Vec3::Zero();  // where the ports aim (unit: m)
@@ -23,12 +37,20 @@ struct ThoraxSceneParams {
 
 ThoraxSceneParams default_thorax_scene_params();
 
+// The patch parameters for a patient: `params.patch` with the anatomy's geometry.
+tissue::ThoracicPatchParams lay_out_patch(const ThoraxSceneParams& params,
+                                          const AnatomyParams& patient, const ThoraxLayout& layout);
+
 struct ThoraxScene {
+  AnatomyParams patient;  // the anatomy after seeded variation
+  ThoraxLayout layout;
   tissue::ThoracicPatch patch;
   tissue::HeartField heart;
+  std::vector<DisplayMesh> skeleton;  // display only
   std::vector<Port> ports;
 };
 
+// Throws MeshFileError when a heart phase file cannot be loaded.
 ThoraxScene make_thorax_scene(const ThoraxSceneParams& params);
 
 physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec);

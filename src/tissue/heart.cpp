@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/mesh_checks.hpp"
 #include "math/angles.hpp"
 #include "math/pose.hpp"
 
@@ -137,13 +138,10 @@ void interpolate_heart(const HeartModel& heart, Real t, std::vector<Vec3>& out) 
 }
 
 Real component_volume(const HeartModel& heart, const std::vector<Vec3>& x, std::uint32_t c) {
-  Real six_v = 0;
-  for (std::uint32_t t = heart.component_triangle_start[c];
-       t < heart.component_triangle_start[c + 1]; ++t) {
-    const auto& tri = heart.topology.triangles[t];
-    six_v += x[tri[0]].dot(x[tri[1]].cross(x[tri[2]]));
-  }
-  return six_v / 6;
+  const std::uint32_t first = heart.component_triangle_start[c];
+  return geometry::enclosed_volume(
+      x, std::span(heart.topology.triangles)
+             .subspan(first, heart.component_triangle_start[c + 1] - first));
 }
 
 Real HeartPlayback::phase_at(double time_s) const {

@@ -40,6 +40,13 @@ HeartField make_heart_field(const HeartModel& model, const HeartPlayback& playba
   // The heart changes its extent as it beats: keep room for the grid's largest rebuild.
   h.grid.reserve_headroom(Real(3));
   h.visited.assign(model.topology.triangles.size(), 0u);
+  h.nearest.resize(model.component_triangle_start.size() - 1);
+  h.triangle_component.resize(model.topology.triangles.size());
+  for (std::uint32_t c = 0; c + 1 < model.component_triangle_start.size(); ++c) {
+    for (std::uint32_t t = model.component_triangle_start[c];
+         t < model.component_triangle_start[c + 1]; ++t)
+      h.triangle_component[t] = c;
+  }
   return h;
 }
 
@@ -95,25 +102,56 @@ void advance_heart(HeartField& h, TissueWorld& world, double time_s) {
   }
 }
 
-Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
+namespace {
+
+// Nearest point of each component of the heart's surface to p within `search`, the side of p
+// (signed distance, negative inside) and the surface normal there. The heart is a union of
+// closed surfaces (LV, RV) that may overlap; p is inside the heart when it is inside any.
+void nearest_per_component(HeartField& h, const Vec3& p, Real search) {
   const auto& tris = h.model.topology.triangles;
-  Real best_d2 = search * search;
-  Real signed_distance = std::numeric_limits<Real>::infinity();
-  std::uint32_t best_t = 0;
-  h.grid.visit(geometry::Box(p - Vec3::Constant(search), p + Vec3::Constant(search)), h.visited,
-               h.stamp, [&](std::uint32_t t) {
-                 const auto& tri = tris[t];
-                 const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
-                     p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
-                 if (q.distance2 > best_d2 || (q.distance2 == best_d2 && t > best_t)) return;
-                 best_d2 = q.distance2;
-                 best_t = t;
-                 const Vec3 n = q.bary[0] * h.normals[tri[0]] + q.bary[1] * h.normals[tri[1]] +
-                                q.bary[2] * h.normals[tri[2]];
-                 const Real side = (p - q.point).dot(n);
-                 signed_distance = side < 0 ? -std::sqrt(q.distance2) : std::sqrt(q.distance2);
-               });
-  return signed_distance;
+  for (HeartField::Nearest& n : h.nearest)
+    n = HeartField::Nearest{};
+  h.grid.visit(
+      geometry::Box(p - Vec3::Constant(search), p + Vec3::Constant(search)), h.visited, h.stamp,
+      [&](std::uint32_t t) {
+        HeartField::Nearest& best = h.nearest[h.triangle_component[t]];
+        const auto& tri = tris[t];
+        const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
+            p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
+        if (q.distance2 > search * search) return;
+        if (q.distance2 > best.distance2 || (q.distance2 == best.distance2 && t > best.triangle))
+          return;
+        best.distance2 = q.distance2;
+        best.triangle = t;
+        best.point = q.point;
+        best.normal = q.bary[0] * h.normals[tri[0]] + q.bary[1] * h.normals[tri[1]] +
+                      q.bary[2] * h.normals[tri[2]];
+      });
+  for (HeartField::Nearest& n : h.nearest) {
+    if (n.triangle == HeartField::kNone || !(n.normal.norm() > 0)) {
+      n.triangle = HeartField::kNone;
+      continue;
+    }
+    n.normal.normalize();
+    const Real d = std::sqrt(n.distance2);
+    n.signed_distance = (p - n.point).dot(n.normal) < 0 ? -d : d;
+  }
+}
+
+}  // namespace
+
+Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
+  nearest_per_component(h, p, search);
+  // Inside any component: as deep as the deepest; outside all: the distance to the nearest.
+  Real inside = 0, outside = std::numeric_limits<Real>::infinity();
+  for (const HeartField::Nearest& n : h.nearest) {
+    if (n.triangle == HeartField::kNone) continue;
+    if (n.signed_distance < 0)
+      inside = std::min(inside, n.signed_distance);
+    else
+      outside = std::min(outside, n.signed_distance);
+  }
+  return inside < 0 ? inside : outside;
 }
 
 std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
@@ -121,36 +159,29 @@ std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
   geometry::Box bounds;
   for (const Vec3& x : h.current)
     bounds.extend(x);
-  const auto& tris = h.model.topology.triangles;
   std::uint32_t contacts = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
     if (P.inverse_mass[i] == 0) continue;
-    const Vec3 p = P.position[i];
-    const Real search = min_search + (p - previous[i]).norm();
-    if (bounds.exteriorDistance(p) > search) continue;
-    Real best_d2 = search * search;
-    std::uint32_t best_t = std::numeric_limits<std::uint32_t>::max();
-    geometry::TrianglePoint best;
-    h.grid.visit(geometry::Box(p - Vec3::Constant(search), p + Vec3::Constant(search)), h.visited,
-                 h.stamp, [&](std::uint32_t t) {
-                   const auto& tri = tris[t];
-                   const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
-                       p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
-                   if (q.distance2 < best_d2 || (q.distance2 == best_d2 && t < best_t)) {
-                     best_d2 = q.distance2, best_t = t, best = q;
-                   }
-                 });
-    if (best_t == std::numeric_limits<std::uint32_t>::max()) continue;
-    const auto& tri = tris[best_t];
-    Vec3 n = best.bary[0] * h.normals[tri[0]] + best.bary[1] * h.normals[tri[1]] +
-             best.bary[2] * h.normals[tri[2]];
-    if (!(n.norm() > 0)) continue;
-    n.normalize();
-    if ((p - best.point).dot(n) >= h.margin) continue;  // outside, clear of the margin
-    P.position[i] = best.point + h.margin * n;
-    const Real vn = P.velocity[i].dot(n);
-    if (vn < 0) P.velocity[i] -= vn * n;
-    ++contacts;
+    const Real search = min_search + (P.position[i] - previous[i]).norm();
+    if (bounds.exteriorDistance(P.position[i]) > search) continue;
+    // Out of the component p is deepest in, onto its surface plus the margin; where components
+    // overlap that point can lie inside another, so look again (a few passes reach the crease
+    // between them).
+    bool moved = false;
+    for (int pass = 0; pass < kHeartCollisionPasses; ++pass) {
+      nearest_per_component(h, P.position[i], search);
+      const HeartField::Nearest* deepest = nullptr;
+      for (const HeartField::Nearest& n : h.nearest) {
+        if (n.triangle == HeartField::kNone || n.signed_distance >= h.margin) continue;
+        if (deepest == nullptr || n.signed_distance < deepest->signed_distance) deepest = &n;
+      }
+      if (deepest == nullptr) break;
+      P.position[i] = deepest->point + h.margin * deepest->normal;
+      const Real vn = P.velocity[i].dot(deepest->normal);
+      if (vn < 0) P.velocity[i] -= vn * deepest->normal;
+      moved = true;
+    }
+    contacts += moved ? 1 : 0;
   }
   h.last_contacts = contacts;
   return contacts;

@@ -11,6 +11,7 @@
 //    0.8 a step, relaxes towards the moving reference. The maps are built once; nothing is
 //    searched for the drive while running. In static mode the displacement is zero.
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -40,7 +41,20 @@ struct HeartField {
   geometry::UniformGrid grid;
   std::vector<std::uint32_t> visited;
   std::uint32_t stamp = 0;
+  std::vector<std::uint32_t> triangle_component;  // component (LV 0, RV 1) of each triangle
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+  struct Nearest {  // per component, for the query in progress
+    Real distance2 = std::numeric_limits<Real>::infinity();
+    std::uint32_t triangle = kNone;
+    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();
+    Real signed_distance = 0;
+  };
+  std::vector<Nearest> nearest;
 };
+
+// Projection passes per particle in collide_with_heart (where the ventricles overlap, leaving
+// one can enter the other).
+inline constexpr int kHeartCollisionPasses = 4;
 
 // Builds the field; the heart starts at playback.phase_at(0).
 HeartField make_heart_field(const HeartModel& model, const HeartPlayback& playback);
@@ -63,8 +77,9 @@ inline constexpr Real kHeartStepSearch = Real(0.002);  // (unit: m)
 std::uint32_t collide_with_heart(HeartField& heart, physics::Particles& particles,
                                  std::span<const Vec3> previous, Real search = kHeartStepSearch);
 
-// Signed distance of p from the heart's current surface near it (negative inside); +infinity
-// when no heart triangle lies within `search` (unit: m).
+// Signed distance of p from the heart, the union of its closed surfaces, near p: inside any of
+// them, minus the depth in the one it is deepest in; outside all, the distance to the nearest;
+// +infinity when no heart triangle lies within `search` (unit: m).
 Real heart_signed_distance(HeartField& heart, const Vec3& p, Real search);
 
 }  // namespace imasim::tissue

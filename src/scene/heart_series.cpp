@@ -1,0 +1,86 @@
+#include "scene/heart_series.hpp"
+
+#include <numeric>
+
+namespace imasim::scene {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw MeshFileError(path + ": " + what);
+}
+
+}  // namespace
+
+tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec) {
+  if (spec.phase_files.size() < 2) {
+    throw MeshFileError("heart phase series: at least two phase files are needed, got " +
+                        std::to_string(spec.phase_files.size()));
+  }
+  MeshLoadOptions options;
+  options.transform = spec.transform;
+  options.checks.require_closed = true;  // the collider needs an inside
+  std::vector<geometry::TriangleMesh> phases;
+  for (const std::string& path : spec.phase_files) {
+    phases.push_back(load_mesh_file(path, options));
+    const geometry::TriangleMesh& first = phases.front();
+    const geometry::TriangleMesh& mesh = phases.back();
+    if (mesh.vertex_count() != first.vertex_count() ||
+        mesh.triangle_count() != first.triangle_count()) {
+      fail(path, "phase " + std::to_string(phases.size() - 1) + " has " +
+                     std::to_string(mesh.vertex_count()) + " vertices and " +
+                     std::to_string(mesh.triangle_count()) + " triangles, the first phase " +
+                     std::to_string(first.vertex_count()) + " and " +
+                     std::to_string(first.triangle_count()) + ": one topology is needed");
+    }
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      if (mesh.triangles[t] != first.triangles[t])
+        fail(path, "triangle " + std::to_string(t) + " differs from the first phase's");
+    }
+  }
+
+  // Components as contiguous vertex and triangle ranges, in order of their first triangle.
+  const geometry::TriangleMesh& first = phases.front();
+  std::vector<std::uint32_t> component;
+  const std::uint32_t count = geometry::triangle_components(first, component);
+  std::vector<std::uint32_t> triangle_order(first.triangle_count());
+  std::iota(triangle_order.begin(), triangle_order.end(), 0u);
+  std::stable_sort(triangle_order.begin(), triangle_order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return component[a] < component[b]; });
+  constexpr std::uint32_t kUnset = ~0u;
+  std::vector<std::uint32_t> new_index(first.vertex_count(), kUnset), old_index;
+  tissue::HeartModel heart;
+  for (std::uint32_t c = 0, k = 0; c < count; ++c) {
+    heart.component_start.push_back(static_cast<std::uint32_t>(old_index.size()));
+    heart.component_triangle_start.push_back(k);
+    for (; k < triangle_order.size() && component[triangle_order[k]] == c; ++k) {
+      geometry::Triangle tri = first.triangles[triangle_order[k]];
+      for (std::uint32_t& v : tri) {
+        if (new_index[v] == kUnset) {
+          new_index[v] = static_cast<std::uint32_t>(old_index.size());
+          old_index.push_back(v);
+        }
+        v = new_index[v];
+      }
+      heart.topology.triangles.push_back(tri);
+    }
+  }
+  heart.component_start.push_back(static_cast<std::uint32_t>(old_index.size()));
+  heart.component_triangle_start.push_back(static_cast<std::uint32_t>(triangle_order.size()));
+
+  for (std::size_t k = 0; k < phases.size(); ++k) {
+    std::vector<Vec3>& frame = heart.keyframes.emplace_back();
+    for (std::uint32_t v : old_index)
+      frame.push_back(phases[k].vertices[v]);
+    for (std::uint32_t c = 0; c < count; ++c) {
+      if (!(tissue::component_volume(heart, frame, c) > 0)) {
+        fail(spec.phase_files[k], "surface " + std::to_string(c) +
+                                      " encloses no positive volume: its triangles face inwards");
+      }
+    }
+  }
+  heart.topology.vertices = heart.keyframes.front();
+  return heart;
+}
+
+}  // namespace imasim::scene
