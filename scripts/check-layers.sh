@@ -8,6 +8,7 @@ declare -A allowed=(
   [geometry]="geometry math"
   [physics]="physics geometry math"
   [tissue]="tissue physics geometry math"
+  [surgery]="surgery tissue physics geometry math"
   [scene]="scene tissue physics geometry math"
 )
 bad=0

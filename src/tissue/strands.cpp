@@ -92,12 +92,16 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
       const Real t = Real(k) / Real(n);
       const std::uint32_t i = P.add((1 - t) * g.start + t * g.end, particle_mass, set.object);
       if (k == 0 || k == n) P.fix(i);  // ends ride on their surfaces
-      if (k > 0) physics::add_distance(world.state.constraints, P, i - 1, i, material);
+      if (k > 0) {
+        set.segment_constraint.push_back(
+            physics::add_distance(world.state.constraints, P, i - 1, i, material));
+      }
       set.diameter.push_back(p.diameter);
     }
     set.end_a.push_back({g.face_a, g.bary_a, 0});
     set.end_b.push_back({g.face_b, g.bary_b, 0});
     set.face_a.push_back(g.face_a);
+    set.cut.push_back(0);
   }
   build_neighbours(set, P);
   world.strands.push_back(std::move(set));

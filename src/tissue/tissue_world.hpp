@@ -44,7 +44,11 @@ struct StrandSet {
   std::uint32_t strand_count = 0;
   std::vector<geometry::SurfaceBinding> end_a, end_b;  // per strand, on mesh_a and mesh_b
   std::vector<std::uint32_t> face_a;                   // source face of each strand on mesh_a
-  std::vector<Real> diameter;                          // per strand particle, for drawing (unit: m)
+  std::vector<Real> diameter;  // per strand particle, for drawing (unit: m); 0 = removed
+  // Cutting (surgery/strand_cut.hpp): the distance constraint of each segment (strand * n + k,
+  // stale once removed) and whether each strand has been cut.
+  std::vector<physics::DistanceHandle> segment_constraint;
+  std::vector<std::uint8_t> cut;
   // XSPH smoothing (SPEC S2): neighbours of each interior particle at rest, as CSR over the
   // set's particles, and the smoothing coefficient in [0, 1].
   std::vector<std::uint32_t> neighbour_start, neighbours;

@@ -14,9 +14,11 @@ void smooth_strand_velocities(TissueWorld& world) {
     for (std::uint32_t k = 0; k < count; ++k) {
       const std::uint32_t i = set.first_particle + k;
       out[i] = P.velocity[i];
+      if (set.diameter[k] == 0) continue;  // removed by a cut
       Real weight = 0;
       Vec3 pull = Vec3::Zero();
       for (std::uint32_t n = set.neighbour_start[k]; n < set.neighbour_start[k + 1]; ++n) {
+        if (set.diameter[set.neighbours[n]] == 0) continue;
         const std::uint32_t j = set.first_particle + set.neighbours[n];
         const Real r = (P.position[j] - P.position[i]).norm();
         if (r >= h) continue;

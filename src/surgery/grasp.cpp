@@ -1,0 +1,63 @@
+#include "surgery/grasp.hpp"
+
+#include <cmath>
+
+namespace imasim::surgery {
+
+Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params) {
+  Grasper g;
+  g.material = world.model.add_material(physics::ConstraintMaterial::xpbd(params.compliance));
+  return g;
+}
+
+namespace {
+
+void release(tissue::TissueWorld& world, Grasper& g) {
+  for (const Grasper::Hold& h : g.held)
+    world.state.constraints.attachment.remove(h.attachment);
+  g.held.clear();
+  g.holding = false;
+}
+
+void grasp(tissue::TissueWorld& world, const GraspParams& params, const InstrumentParams& inst,
+           const Pose& tool, Grasper& g) {
+  physics::Particles& P = world.state.particles;
+  const Mat3 to_tool = tool.rotation.transpose();
+  auto in_strand = [&](std::uint32_t i) {
+    for (const tissue::StrandSet& set : world.strands)
+      if (i >= set.first_particle && i < set.first_particle + set.particle_count()) return true;
+    return false;
+  };
+  // The jaws catch the layer they close on: a membrane (fascia, vessel wall) when one lies
+  // between them, the fat strands only when none does.
+  for (int pass = 0; pass < 2 && g.held.empty(); ++pass) {
+    const bool strands = pass == 1;
+    for (std::uint32_t i = 0; i < P.size(); ++i) {
+      if (P.is_fixed(i) || in_strand(i) != strands) continue;       // fixed: kinematic or removed
+      const Vec3 q = to_tool * (P.position[i] - tool.translation);  // (l, n, f) coordinates
+      if (q.z() < 0 || q.z() > inst.jaws.length) continue;
+      if (std::abs(q.x()) > inst.jaws.width / 2 + params.margin) continue;
+      if (std::abs(q.y()) > params.capture_thickness) continue;
+      const Vec3 local(q.x(), 0, q.z());  // pinched onto the jaws' plane
+      g.held.push_back(
+          {i, physics::add_attachment(world.state.constraints, P, i, tool.apply(local), g.material),
+           local});
+    }
+  }
+  g.holding = true;
+}
+
+}  // namespace
+
+std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params,
+                           const InstrumentParams& inst, const InstrumentState& state, Grasper& g) {
+  const Pose tool = world_pose(inst, state);
+  if (state.closed && !g.was_closed && !g.holding) grasp(world, params, inst, tool, g);
+  if (!state.closed && g.holding) release(world, g);
+  g.was_closed = state.closed;
+  for (const Grasper::Hold& h : g.held)
+    physics::set_attachment_target(world.state.constraints, h.attachment, tool.apply(h.local));
+  return static_cast<std::uint32_t>(g.held.size());
+}
+
+}  // namespace imasim::surgery

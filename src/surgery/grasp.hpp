@@ -1,0 +1,49 @@
+#pragma once
+// Grasping with the forceps (SPEC S4): when the jaws close (eq. 16's angle falls below the
+// closed threshold), the dynamic tissue particles caught between them attach to the jaws and
+// follow them (XPBD attachment constraints whose targets ride in the tool frame); when the jaws
+// open again they are released. Through the couplings (2.3.3), lifting the fascia lifts the fat
+// under it.
+//
+// Caught: in the tool frame {l, n, f} at the hinge, 0 <= f.(x - hinge) <= jaw length,
+// |l.(x - hinge)| <= width / 2 + margin and |n.(x - hinge)| <= capture_thickness: the tissue
+// pinched between the closed jaws. Each caught particle keeps its offset along l and f and is
+// pulled onto the jaws' plane (n = 0). The jaws catch the layer they close on: membrane
+// particles (fascia, vessel) when any lie between them, else strand particles.
+#include <cstdint>
+#include <vector>
+
+#include "physics/constraint_system.hpp"
+#include "surgery/instrument.hpp"
+#include "tissue/tissue_world.hpp"
+
+namespace imasim::surgery {
+
+struct GraspParams {
+  Real capture_thickness = Real(0.002);  // (unit: m)
+  Real margin = Real(0.001);             // beyond the jaws' width (unit: m)
+  Real compliance = Real(1e-6);          // of the attachments (unit: m/N)
+};
+
+struct Grasper {
+  physics::MaterialId material = 0;
+  bool holding = false;
+  bool was_closed = true;
+  struct Hold {
+    std::uint32_t particle = 0;
+    physics::AttachmentHandle attachment;
+    Vec3 local = Vec3::Zero();  // target in the tool frame (unit: m)
+  };
+  std::vector<Hold> held;
+};
+
+// Registers the attachments' material in the world's model (set-up).
+Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params);
+
+// Once per step, after the instrument's pose and jaws are updated: grasps on closing, releases
+// on opening, moves the held particles' targets with the jaws. Returns the number held.
+std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params,
+                           const InstrumentParams& instrument, const InstrumentState& state,
+                           Grasper& grasper);
+
+}  // namespace imasim::surgery
