@@ -27,6 +27,15 @@ TEST(SceneFile, PrintThenParseGivesTheSameScene) {
   EXPECT_EQ(hash[0], hash[1]);
 }
 
+TEST(SceneFile, PrintedPathsAreEscapedTomlStrings) {
+  ThoraxSceneParams p = default_thorax_scene_params();
+  p.heart_series.phase_files = {"/data/a\"b\\c.obj", "/data/line\nbreak.obj"};
+  const std::string text = print_scene(p);
+  EXPECT_NE(text.find(R"(phase_files = ["/data/a\"b\\c.obj", "/data/line\u000abreak.obj"])"),
+            std::string::npos)
+      << text;
+}
+
 TEST(SceneFile, KeysNotGivenKeepTheirDefaults) {
   const ThoraxSceneParams p =
       parse_scene("[heart]\nheart_rate_bpm = 90\nbeating = false\n", "s.toml");

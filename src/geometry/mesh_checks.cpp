@@ -5,6 +5,9 @@
 #include <numeric>
 #include <sstream>
 
+#include "geometry/edge_adjacency.hpp"
+#include "math/angles.hpp"
+
 namespace imasim::geometry {
 
 namespace {
@@ -35,7 +38,7 @@ Real triangle_area(const TriangleMesh& mesh, std::size_t t) {
 
 Real smallest_angle(const TriangleMesh& mesh, std::size_t t) {
   const Triangle& tri = mesh.triangles[t];
-  Real smallest = Real(M_PI);
+  Real smallest = kPi;
   for (int k = 0; k < 3; ++k) {
     const Vec3& p = mesh.vertices[tri[k]];
     const Vec3 u = mesh.vertices[tri[(k + 1) % 3]] - p;
@@ -89,43 +92,31 @@ std::string first_degenerate_triangle(const TriangleMesh& mesh, Real min_area, R
 }
 
 std::string first_manifold_defect(const TriangleMesh& mesh, bool require_closed) {
-  // Every directed edge (a -> b) with its triangle, grouped by the undirected edge.
-  struct DirectedEdge {
-    std::uint32_t lo, hi, triangle;
-    bool forward;  // a < b
-  };
-  std::vector<DirectedEdge> edges;
-  edges.reserve(mesh.triangles.size() * 3);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Triangle& tri = mesh.triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = tri[k], b = tri[(k + 1) % 3];
-      edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(t), a < b});
-    }
+  // Edges in sorted (min, max) order; those in more than two triangles are set apart.
+  const EdgeAdjacency adjacency = build_edge_adjacency(mesh);
+  if (!adjacency.non_manifold_edges.empty()) {
+    const auto& e = adjacency.non_manifold_edges.front();
+    return "edge (" + std::to_string(e[0]) + ", " + std::to_string(e[1]) +
+           ") is shared by more than two triangles: not a manifold";
   }
-  std::sort(edges.begin(), edges.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
-    return std::tie(x.lo, x.hi, x.triangle) < std::tie(y.lo, y.hi, y.triangle);
-  });
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi)
-      ++j;
-    const std::string edge =
-        "edge (" + std::to_string(edges[i].lo) + ", " + std::to_string(edges[i].hi) + ")";
-    if (j - i > 2) {
-      return edge + " is shared by " + std::to_string(j - i) + " triangles (" +
-             std::to_string(edges[i].triangle) + ", " + std::to_string(edges[i + 1].triangle) +
-             ", " + std::to_string(edges[i + 2].triangle) + "): not a manifold";
+  for (const MeshEdge& e : adjacency.edges) {
+    const std::string edge = "edge (" + std::to_string(std::min(e.a, e.b)) + ", " +
+                             std::to_string(std::max(e.a, e.b)) + ")";
+    if (!e.is_interior()) {
+      if (require_closed) {
+        return edge + " of triangle " + std::to_string(e.faces[0]) +
+               " is on a boundary: the surface is not closed";
+      }
+      continue;
     }
-    if (j - i == 2 && edges[i].forward == edges[i + 1].forward) {
-      return edge + " runs the same way in triangles " + std::to_string(edges[i].triangle) +
-             " and " + std::to_string(edges[i + 1].triangle) + ": inconsistent orientation";
+    // The first face runs a -> b; a consistently oriented neighbour runs b -> a.
+    const Triangle& t = mesh.triangles[e.faces[1]];
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] == e.a && t[(k + 1) % 3] == e.b) {
+        return edge + " runs the same way in triangles " + std::to_string(e.faces[0]) + " and " +
+               std::to_string(e.faces[1]) + ": inconsistent orientation";
+      }
     }
-    if (j - i == 1 && require_closed) {
-      return edge + " of triangle " + std::to_string(edges[i].triangle) +
-             " is on a boundary: the surface is not closed";
-    }
-    i = j;
   }
 
   // Each vertex must be the centre of one fan: the opposite edges of its triangles (its link)

@@ -6,6 +6,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -239,10 +240,16 @@ std::string vec3_text(const Vec3& v) {
   return out;
 }
 
-// A TOML basic string.
+// A TOML basic string: quotes and backslashes escaped, control characters as \uXXXX.
 std::string string_text(const std::string& v) {
   std::string out = "\"";
   for (char c : v) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      std::array<char, 8> code;
+      std::snprintf(code.data(), code.size(), "\\u%04x", static_cast<unsigned char>(c));
+      out += code.data();
+      continue;
+    }
     if (c == '"' || c == '\\') out += '\\';
     out += c;
   }

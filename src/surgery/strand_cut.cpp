@@ -68,18 +68,21 @@ std::uint32_t cut_strands(tissue::TissueWorld& w, const CutPlane& plane, Real om
 
 namespace {
 
-// Drops the coupling pairs that read or write particle p.
-void uncouple(tissue::TissueWorld& w, std::uint32_t p) {
-  for (tissue::OffsetCoupling& c : w.couplings) {
-    std::erase_if(c.pairs, [p](const auto& pair) { return pair.first == p || pair.second == p; });
-  }
+// Drops the coupling pairs that read or write a particle of `removed` (sorted): one pass over
+// each coupling however many particles went.
+void uncouple(tissue::TissueWorld& w, const std::vector<std::uint32_t>& removed) {
+  auto gone = [&](std::uint32_t p) {
+    return std::binary_search(removed.begin(), removed.end(), p);
+  };
+  for (tissue::OffsetCoupling& c : w.couplings)
+    std::erase_if(c.pairs, [&](const auto& pair) { return gone(pair.first) || gone(pair.second); });
 }
 
 }  // namespace
 
 std::uint32_t dissolve_cut_strands(tissue::TissueWorld& w, const StrandCutParams& params) {
   physics::Particles& P = w.state.particles;
-  std::uint32_t removed = 0;
+  std::vector<std::uint32_t> removed;  // allocates only when particles go
   for (tissue::StrandSet& set : w.strands) {
     for (std::uint32_t i = 0; i < set.strand_count; ++i) {
       if (!set.cut[i]) continue;
@@ -96,14 +99,17 @@ std::uint32_t dissolve_cut_strands(tissue::TissueWorld& w, const StrandCutParams
           w.state.constraints.distance.remove(set.segment_constraint[i * set.segments + k - 1]);
         if (k < set.segments)
           w.state.constraints.distance.remove(set.segment_constraint[i * set.segments + k]);
-        uncouple(w, p);
         P.inverse_mass[p] = 0;
         P.velocity[p] = Vec3::Zero();
-        ++removed;
+        removed.push_back(p);
       }
     }
   }
-  return removed;
+  if (!removed.empty()) {
+    std::sort(removed.begin(), removed.end());
+    uncouple(w, removed);
+  }
+  return static_cast<std::uint32_t>(removed.size());
 }
 
 std::uint32_t steps_to_vanish(const StrandCutParams& params, Real d0) {
