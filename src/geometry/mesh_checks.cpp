@@ -30,23 +30,30 @@ std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
 
 }  // namespace
 
-Real triangle_area(const TriangleMesh& mesh, std::size_t t) {
-  const Triangle& tri = mesh.triangles[t];
-  const Vec3& a = mesh.vertices[tri[0]];
-  return Real(0.5) * (mesh.vertices[tri[1]] - a).cross(mesh.vertices[tri[2]] - a).norm();
+Real triangle_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return Real(0.5) * (b - a).cross(c - a).norm();
 }
 
-Real smallest_angle(const TriangleMesh& mesh, std::size_t t) {
-  const Triangle& tri = mesh.triangles[t];
+Real smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3* x[3] = {&a, &b, &c};
   Real smallest = kPi;
   for (int k = 0; k < 3; ++k) {
-    const Vec3& p = mesh.vertices[tri[k]];
-    const Vec3 u = mesh.vertices[tri[(k + 1) % 3]] - p;
-    const Vec3 v = mesh.vertices[tri[(k + 2) % 3]] - p;
+    const Vec3 u = *x[(k + 1) % 3] - *x[k];
+    const Vec3 v = *x[(k + 2) % 3] - *x[k];
     // atan2 of |u x v| and u.v is accurate for angles near 0 and pi alike.
     smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)));
   }
   return smallest;
+}
+
+Real triangle_area(const TriangleMesh& mesh, std::size_t t) {
+  const Triangle& tri = mesh.triangles[t];
+  return triangle_area(mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
+}
+
+Real smallest_angle(const TriangleMesh& mesh, std::size_t t) {
+  const Triangle& tri = mesh.triangles[t];
+  return smallest_angle(mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]);
 }
 
 std::string first_index_defect(const TriangleMesh& mesh, bool require_used_vertices) {

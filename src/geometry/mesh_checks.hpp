@@ -32,6 +32,8 @@ std::string first_manifold_defect(const TriangleMesh& mesh, bool require_closed)
 // Smallest interior angle of triangle t (unit: rad) and its area (unit: m^2).
 Real smallest_angle(const TriangleMesh& mesh, std::size_t t);
 Real triangle_area(const TriangleMesh& mesh, std::size_t t);
+Real smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c);
+Real triangle_area(const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Connected components over shared vertices: component index per triangle; returns the count.
 std::uint32_t triangle_components(const TriangleMesh& mesh, std::vector<std::uint32_t>& component);

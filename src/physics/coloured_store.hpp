@@ -78,6 +78,10 @@ class ColouredStore {
     return true;
   }
 
+  // The handle of the live constraint whose row carries `slot` (rows keep their slot as a
+  // back-reference), for indexes built from the rows.
+  Handle<Row> handle_of(const Row& row) const { return {row.slot, slots_[row.slot].generation}; }
+
   bool resolves(Handle<Row> h) const {
     return h.index < slots_.size() && slots_[h.index].live &&
            slots_[h.index].generation == h.generation;

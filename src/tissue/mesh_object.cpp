@@ -6,6 +6,7 @@
 #include "geometry/grid_rectangle.hpp"
 #include "geometry/vertex_normals.hpp"
 #include "physics/mesh_constraints.hpp"
+#include "tissue/topology_change.hpp"
 
 namespace imasim::tissue {
 
@@ -45,14 +46,23 @@ std::uint32_t add_mesh_object(TissueWorld& world, const geometry::TriangleMesh& 
   if (!p.is_static) {
     const physics::MaterialId stretch = world.model.add_material(p.stretch);
     const physics::MaterialId bend = world.model.add_material(p.bend);
-    physics::add_mesh_constraints(world.state.constraints, P, geometry::build_edge_adjacency(mesh),
-                                  m.first_particle, stretch, bend);
+    physics::add_mesh_constraints(world.state.constraints, P, adjacency, m.first_particle, stretch,
+                                  bend);
+    m.stretch_material = stretch;
+    m.bend_material = bend;
+  }
+  m.total_mass = p.total_mass;
+  m.particle_capacity = m.particle_count + p.spare_vertices;
+  for (std::uint32_t k = 0; k < p.spare_vertices; ++k) {
+    P.fix(P.add(mesh.vertices.front(), vertex_mass, m.object));  // parked until cutting uses it
   }
   m.triangles = mesh.triangles;
   m.normals.resize(mesh.vertices.size());
   geometry::compute_vertex_normals(mesh.vertices, mesh.triangles, m.normals);
   world.meshes.push_back(std::move(m));
-  return static_cast<std::uint32_t>(world.meshes.size() - 1);
+  const auto index = static_cast<std::uint32_t>(world.meshes.size() - 1);
+  if (p.spare_vertices > 0 && !p.is_static) index_mesh_edges(world, index);
+  return index;
 }
 
 FasciaParams default_fascia_params() {
@@ -63,6 +73,7 @@ FasciaParams default_fascia_params() {
   f.object.angular_damping = Real(0.01);  // 2.3.1
   f.object.stretch = physics::ConstraintMaterial::xpbd(Real(1e-4));  // (m/N)
   f.object.bend = physics::ConstraintMaterial::xpbd(Real(10));       // (rad/(N m))
+  f.object.spare_vertices = 2048;  // room for the vertices a harvest's cuts add
   return f;
 }
 

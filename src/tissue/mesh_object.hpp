@@ -17,6 +17,9 @@ struct MeshObjectParams {
   physics::ConstraintMaterial stretch = physics::ConstraintMaterial::xpbd(0);
   physics::ConstraintMaterial bend = physics::ConstraintMaterial::xpbd(1);
   bool is_static = false;  // every particle fixed, no constraints (the support structure)
+  // Particles reserved for the vertices that cutting adds (tissue/topology_change.hpp); a mesh
+  // with spares keeps an edge index so that its topology can change.
+  std::uint32_t spare_vertices = 0;
 };
 
 // Returns the index of the new mesh object in world.meshes. Throws std::invalid_argument for a

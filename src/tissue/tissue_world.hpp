@@ -4,8 +4,10 @@
 // each object keeps its own parameters (mass, gravity, damping, materials).
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
+#include "geometry/edge_adjacency.hpp"
 #include "geometry/surface_binding.hpp"
 #include "geometry/triangle_mesh.hpp"
 #include "physics/model.hpp"
@@ -13,6 +15,18 @@
 #include "tissue/coupling.hpp"
 
 namespace imasim::tissue {
+
+// Per edge of a mesh that can change topology: its faces and its constraints (eq. 2, eq. 3).
+struct EdgeRecord {
+  std::uint32_t faces[2] = {geometry::kNoFace, geometry::kNoFace};
+  physics::DistanceHandle distance;
+  physics::DihedralHandle dihedral;  // null on a boundary edge
+};
+
+// Key of the undirected edge (a, b) of a mesh (mesh-local vertex indices).
+inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
+}
 
 // A simulated triangle surface: mesh vertex v is particle first_particle + v.
 struct MeshObject {
@@ -22,6 +36,14 @@ struct MeshObject {
   std::uint32_t particle_count = 0;
   std::vector<geometry::Triangle> triangles;  // mesh-local vertex indices
   std::vector<Vec3> normals;                  // per vertex, refreshed every step
+  // Topology changes (tissue/topology_change.hpp). Particles first_particle + particle_count up
+  // to first_particle + particle_capacity are reserved for the vertices that cutting adds: fixed,
+  // in no constraint, on no triangle until used. The edge index (faces and constraints of each
+  // edge) is kept only for meshes with spare capacity; it is looked up, never iterated.
+  std::uint32_t particle_capacity = 0;
+  Real total_mass = 0;  // M_total of eq. 5 (unit: kg)
+  physics::MaterialId stretch_material = 0, bend_material = 0;
+  std::unordered_map<std::uint64_t, EdgeRecord> edges;
 };
 
 // A fine display mesh that follows a coarse MeshObject (SPEC S2 multi-resolution).
