@@ -10,6 +10,7 @@ declare -A allowed=(
   [tissue]="tissue physics geometry math"
   [surgery]="surgery tissue physics geometry math"
   [scene]="scene tissue physics geometry math"
+  [session]="session scene surgery tissue physics geometry math"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

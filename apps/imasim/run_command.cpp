@@ -3,14 +3,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "math/state_hash.hpp"
 #include "report.hpp"
 #include "scene/scene_file.hpp"
 #include "scene/thorax_scene.hpp"
+#include "session/surgical_session.hpp"
+#include "session_report.hpp"
 
 namespace imasim::cli {
 
@@ -19,9 +23,14 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("run", "Run the thorax scene (beating heart, tissues)");
   cmd->add_flag("--headless", opt->headless, "Run without a window (the only mode so far)");
   cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the built-in scene");
-  cmd->add_option("--seconds", opt->seconds, "Simulated time (s)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 3600.0));
+  opt->seconds_option =
+      cmd->add_option("--seconds", opt->seconds,
+                      "Simulated time (s); with --script, default: the script's end + 0.5 s")
+          ->capture_default_str()
+          ->check(CLI::Range(0.0, 3600.0));
+  cmd->add_option("--script", opt->script_file,
+                  "Input script driving the instruments (docs/input_script.md)");
+  cmd->add_option("--events", opt->events_file, "Write the session's events to this CSV file");
   cmd->add_flag("--static", opt->static_heart, "Freeze the heart at its static phase (70 %)");
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
                   "Heart rate (beats per minute); default: the scene's (75)")
@@ -54,19 +63,49 @@ int run_run_command(const RunOptions& o) {
   if (o.static_heart) params.playback.beating = false;
   if (o.heart_rate_bpm > 0) params.playback.heart_rate_bpm = Real(o.heart_rate_bpm);
   if (o.patient_seed) params.anatomy.patient_seed = *o.patient_seed;
-  scene::ThoraxScene scene;
+  std::optional<surgery::InputScript> script;
+  if (!o.script_file.empty()) {
+    try {
+      script = surgery::load_input_script(o.script_file);
+    } catch (const surgery::InputScriptError& e) {
+      std::cerr << e.what() << '\n';
+      return 2;
+    }
+  }
+  std::ofstream events_out;
+  if (!o.events_file.empty()) {
+    if (!script) {
+      std::cerr << "imasim run: --events needs --script (events come from the instruments)\n";
+      return 2;
+    }
+    events_out.open(o.events_file);
+    if (!events_out) {
+      std::cerr << "imasim run: cannot write the events file " << o.events_file << '\n';
+      return 2;
+    }
+  }
+  std::optional<session::SurgicalSession> surgical;
+  scene::ThoraxScene plain;
   try {
-    scene = scene::make_thorax_scene(params);
+    if (script) {
+      surgical = session::make_surgical_session(params, session::SessionParams{});
+    } else {
+      plain = scene::make_thorax_scene(params);
+    }
   } catch (const std::exception& e) {
     std::cerr << "imasim run: cannot build the scene: " << e.what() << '\n';
     return 2;
   }
+  scene::ThoraxScene& scene = surgical ? surgical->scene : plain;
   physics::Executor exec(o.threads);
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
 
-  const auto steps =
-      static_cast<std::uint64_t>(std::llround(o.seconds / double(w.model.solver.dt)));
+  double seconds = o.seconds;
+  if (script && o.seconds_option && o.seconds_option->count() == 0) {
+    seconds = script->end_time() + 0.5;
+  }
+  const auto steps = static_cast<std::uint64_t>(std::llround(seconds / double(w.model.solver.dt)));
   std::vector<double> step_ms;
   step_ms.reserve(steps);
   physics::StepResult failure;
@@ -75,7 +114,10 @@ int run_run_command(const RunOptions& o) {
   std::uint64_t done = 0;
   for (; done < steps; ++done) {
     const auto t0 = std::chrono::steady_clock::now();
-    const physics::StepResult r = scene::step_thorax_scene(scene, exec);
+    const physics::StepResult r =
+        surgical
+            ? session::step_session(*surgical, session::sample_script(*script, w.state.time), exec)
+            : scene::step_thorax_scene(scene, exec);
     step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (!r.ok()) {
@@ -118,6 +160,17 @@ int run_run_command(const RunOptions& o) {
   out["heart_contacts_max"] = max_contacts;
   out["ms_per_step_median"] = median_ms;
   out["state_hash"] = to_hex(physics::position_hash(w.state));
+  if (surgical) {
+    out["script"] = o.script_file;
+    add_session_report(out, *surgical);
+    if (events_out) {
+      write_events_csv(events_out, surgical->events);
+      if (!events_out) {
+        std::cerr << "imasim run: writing the events file " << o.events_file << " failed\n";
+        return 2;
+      }
+    }
+  }
   add_status(out, finite, failure, done);
   print_report(out, o.json);
   return failure.ok() ? 0 : 3;

@@ -1,7 +1,7 @@
 #pragma once
 // `imasim run --headless`: assembles the thorax scene (tissues, beating heart, ports), steps it
-// and reports timings, the heart phase, the motion reaching the IMA, a state hash and any
-// divergence.
+// (or, with --script, a surgical session driven by an input script) and reports timings, the heart
+// phase, the motion reaching the IMA, a state hash and any divergence.
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <memory>
@@ -19,6 +19,9 @@ struct RunOptions {
   std::optional<std::uint64_t> patient_seed;  // unset: the scene's
   int threads = 0;
   bool json = false;
+  std::string script_file;  // empty: no instruments; else a surgical session driven by it
+  std::string events_file;  // empty: events only counted; else written there as CSV
+  CLI::Option* seconds_option = nullptr;  // given on the command line?
 };
 
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app);

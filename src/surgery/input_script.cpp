@@ -423,16 +423,4 @@ CameraInput sample_camera(const CameraTrack& track, double t) {
   return in;
 }
 
-const char* to_string(PedalMode mode) {
-  switch (mode) {
-    case PedalMode::off:
-      return "off";
-    case PedalMode::cut:
-      return "cut";
-    case PedalMode::coag:
-      return "coag";
-  }
-  return "unknown";
-}
-
 }  // namespace imasim::surgery

@@ -13,11 +13,9 @@
 
 #include "math/pose.hpp"
 #include "surgery/instrument.hpp"
+#include "surgery/pedal.hpp"
 
 namespace imasim::surgery {
-
-// The electrocautery foot pedal.
-enum class PedalMode : std::uint8_t { off, cut, coag };
 
 // Which pose an instrument track gives: the console hand (through the arm's scaling and remote
 // centre of motion) or the tool's hinge directly in the scene frame. One per track.
@@ -91,7 +89,5 @@ struct CameraInput {
 // Binary searches, no allocation. t must not be NaN.
 InstrumentInput sample_instrument(const InstrumentTrack& track, double t);
 CameraInput sample_camera(const CameraTrack& track, double t);
-
-const char* to_string(PedalMode mode);
 
 }  // namespace imasim::surgery

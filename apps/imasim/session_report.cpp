@@ -1,0 +1,44 @@
+#include "session_report.hpp"
+
+#include <cstdio>
+
+namespace imasim::cli {
+
+void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSession& s) {
+  nlohmann::ordered_json events = nlohmann::ordered_json::object();
+  for (surgery::EventKind kind :
+       {surgery::EventKind::grasp, surgery::EventKind::release, surgery::EventKind::fascia_cut,
+        surgery::EventKind::strand_cut, surgery::EventKind::cautery_on,
+        surgery::EventKind::cautery_off, surgery::EventKind::contact_begin,
+        surgery::EventKind::contact_end, surgery::EventKind::injury}) {
+    events[surgery::to_string(kind)] = s.events.count(kind);
+  }
+  out["events"] = events;
+  out["fascia_edges_cut"] = s.fascia_edges_cut;
+  out["strands_cut"] = s.strands_cut;
+  out["cautery_energy_j"] = s.cautery_energy;
+  std::size_t coagulated = 0, injured = 0;
+  for (std::uint8_t c : s.cautery.coagulated)
+    coagulated += c;
+  for (std::uint8_t c : s.cautery.injured)
+    injured += c;
+  out["coagulated_particles"] = coagulated;
+  out["ima_injured_particles"] = injured;
+  const tissue::MeshObject& fascia = s.scene.patch.world.meshes[s.scene.patch.fascia];
+  out["fascia_vertices"] = fascia.particle_count;
+  out["fascia_triangles"] = fascia.triangles.size();
+  out["held_particles"] = s.grasper.held.size();
+}
+
+void write_events_csv(std::ostream& out, const surgery::EventLog& log) {
+  out << "time_s,kind,instrument,tissue,count,value\n";
+  char line[160];
+  for (const surgery::Event& e : log.events) {
+    std::snprintf(line, sizeof line, "%.4f,%s,%s,%s,%u,%.6g\n", e.time, surgery::to_string(e.kind),
+                  e.instrument == 0 ? "left" : "right", surgery::to_string(e.tissue), e.count,
+                  double(e.value));
+    out << line;
+  }
+}
+
+}  // namespace imasim::cli

@@ -1,0 +1,303 @@
+#include "session/surgical_session.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "tissue/tissue_step.hpp"
+
+namespace imasim::session {
+namespace {
+
+using surgery::EventKind;
+using surgery::Tissue;
+
+const scene::Port& find_port(const std::vector<scene::Port>& ports, const std::string& name) {
+  for (const scene::Port& p : ports)
+    if (p.name == name) return p;
+  throw std::invalid_argument("surgical session: the scene has no '" + name + "' port");
+}
+
+// A rotation whose f axis (third column) is `f`: l = R (1, 0, 0) across, n = f x l.
+Mat3 frame_along(const Vec3& f) {
+  Vec3 l = Vec3::UnitZ().cross(f);
+  if (l.norm() < Real(1e-6)) l = Vec3::UnitX().cross(f);
+  l.normalize();
+  Mat3 r;
+  r.col(0) = l;
+  r.col(1) = f.cross(l);
+  r.col(2) = f;
+  return r;
+}
+
+// Points of the instrument that must stay out of the heart and the wall: the hinge and the tips.
+std::array<Vec3, 3> probe_points(const Station& s, Real electrode_length) {
+  const Pose& p = s.pose;
+  if (s.instrument.kind == surgery::InstrumentKind::forceps) {
+    return {p.translation,
+            surgery::jaw_tip(s.instrument, surgery::upper_jaw_pose(s.instrument, s.state)),
+            surgery::jaw_tip(s.instrument, surgery::lower_jaw_pose(s.instrument, s.state))};
+  }
+  const Vec3 tip = p.translation + electrode_length * p.rotation.col(2);
+  return {p.translation, Real(0.5) * (p.translation + tip), tip};
+}
+
+bool inside_cavity(const geometry::CylinderPatchSpec& wall, const Vec3& x, Real clearance) {
+  const Vec3 axis = wall.axis.normalized();
+  const Vec3 r = x - wall.origin;
+  return (r - r.dot(axis) * axis).norm() < wall.radius - clearance;
+}
+
+void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput& in) {
+  st.previous_pose = st.pose;
+  st.previous_controller = st.state.controller;
+  switch (in.source) {
+    case surgery::PoseSource::hand:
+      surgery::update_arm(st.arm, in.pose, in.clutch, st.arm_state);
+      break;
+    case surgery::PoseSource::tool:
+      st.arm_state.commanded = in.pose;
+      st.arm_state.tool = surgery::constrain_to_port(st.arm, in.pose);
+      break;
+    case surgery::PoseSource::none:
+      break;
+  }
+  st.state.controller = st.arm_state.tool;
+  surgery::integrate_jaws(st.instrument.jaws, in.jaw, s.scene.patch.world.model.solver.dt,
+                          st.state);
+  st.pose = surgery::world_pose(st.instrument, st.state);
+
+  // The instrument stops at the heart's surface and the chest wall: if a probe point would be
+  // inside either, the hinge is drawn back along the shaft (bisection between the port's minimum
+  // insertion, which lies in the cavity, and the commanded hinge).
+  const Real clearance = s.params.tool_clearance, electrode = s.params.cautery.electrode_length;
+  auto blocked = [&](bool& heart, bool& wall) {
+    heart = wall = false;
+    for (const Vec3& x : probe_points(st, electrode)) {
+      heart = heart || tissue::heart_signed_distance(s.scene.heart, x, Real(0.01)) < clearance;
+      wall = wall || !inside_cavity(s.scene.layout.wall, x, clearance);
+    }
+    return heart || wall;
+  };
+  bool heart = false, wall = false;
+  st.blocked_by_heart = st.blocked_by_wall = false;
+  if (!blocked(heart, wall)) return;
+  st.blocked_by_heart = heart;
+  st.blocked_by_wall = wall;
+  // It stops where it was (a motion into the surface is refused) ...
+  const Pose commanded = st.state.controller;
+  st.state.controller = st.previous_controller;
+  st.pose = surgery::world_pose(st.instrument, st.state);
+  if (!blocked(heart, wall)) {
+    st.arm_state.tool = st.state.controller;
+    return;
+  }
+  // ... unless the heart moved into it: then it gives way along its shaft.
+  st.state.controller = commanded;
+  const Vec3 port = st.arm.port, hinge = st.state.controller.translation;
+  const Vec3 axis = (hinge - port).normalized();
+  Real safe = st.arm.min_insertion, unsafe = (hinge - port).norm();
+  for (int k = 0; k < 30; ++k) {
+    const Real mid = Real(0.5) * (safe + unsafe);
+    st.state.controller.translation = port + mid * axis;
+    st.pose = surgery::world_pose(st.instrument, st.state);
+    bool h = false, w = false;
+    (blocked(h, w) ? unsafe : safe) = mid;
+  }
+  st.state.controller.translation = port + safe * axis;
+  st.arm_state.tool = st.state.controller;
+  st.pose = surgery::world_pose(st.instrument, st.state);
+}
+
+void build_geometry(SurgicalSession& s, Station& st, bool holding) {
+  const Real dt = s.scene.patch.world.model.solver.dt;
+  if (st.instrument.kind == surgery::InstrumentKind::forceps) {
+    surgery::make_tool_geometry(st.instrument, st.state, st.geometry);
+    st.geometry.capsules.clear();
+    // Open or closing jaws let tissue in between them (to be grasped); closed, they push it
+    // like a blunt probe; what they hold stays between them.
+    if (!st.state.closed || holding) st.geometry.boxes.clear();
+  } else {
+    st.geometry.capsules.clear();
+    st.geometry.boxes.clear();
+    const std::array<Vec3, 2> e = electrode(s);
+    st.geometry.capsules.push_back({e[0], e[1], s.params.electrode_radius});
+  }
+  // The shaft runs from the wrist, behind the hinge, back through the port.
+  const Vec3 back = (st.arm.port - st.pose.translation).normalized();
+  const Vec3 wrist = st.pose.translation + s.params.wrist_length * back;
+  st.geometry.capsules.push_back(
+      {wrist, wrist + st.instrument.shaft_length * back, st.instrument.shaft_radius});
+  st.geometry.velocity = (st.pose.translation - st.previous_pose.translation) / dt;
+}
+
+void record_contacts(SurgicalSession& s, std::uint8_t index, Station& st, double time) {
+  std::array<std::uint32_t, surgery::kTissueCount> count{};
+  for (std::size_t o = 0; o < s.object_tissue.size() && o < 8; ++o)
+    count[static_cast<std::size_t>(s.object_tissue[o])] += st.contact.per_object[o];
+  if (st.blocked_by_heart) count[static_cast<std::size_t>(Tissue::heart)] += 1;
+  if (st.blocked_by_wall) count[static_cast<std::size_t>(Tissue::chest_wall)] += 1;
+  for (int t = 1; t < surgery::kTissueCount; ++t) {
+    const bool now = count[t] > 0;
+    if (now == st.touching[t]) continue;
+    st.touching[t] = now;
+    s.events.add(time, now ? EventKind::contact_begin : EventKind::contact_end, index,
+                 static_cast<Tissue>(t), count[t], now ? st.contact.max_depth : Real(0));
+  }
+}
+
+}  // namespace
+
+std::array<Vec3, 2> electrode(const SurgicalSession& s) {
+  const Pose& p = s.stations[1].pose;
+  return {p.translation, p.translation + s.params.cautery.electrode_length * p.rotation.col(2)};
+}
+
+SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_params,
+                                      const SessionParams& params) {
+  SurgicalSession s;
+  s.params = params;
+  s.scene = scene::make_thorax_scene(scene_params);
+  tissue::TissueWorld& w = s.scene.patch.world;
+  const tissue::ThoracicPatch& patch = s.scene.patch;
+  s.grasper = surgery::make_grasper(w, params.grasp);
+
+  s.object_tissue.assign(w.model.objects.size(), Tissue::none);
+  s.object_tissue[w.meshes[patch.wall].object] = Tissue::chest_wall;
+  s.object_tissue[w.meshes[patch.fascia].object] = Tissue::fascia;
+  s.object_tissue[w.meshes[patch.ima].object] = Tissue::ima;
+  std::vector<physics::ObjectId> heatable = {w.meshes[patch.fascia].object,
+                                             w.meshes[patch.ima].object};
+  for (const tissue::StrandSet& set : w.strands) {
+    s.object_tissue[set.object] = Tissue::fat;
+    heatable.push_back(set.object);
+  }
+  s.cautery = surgery::make_cautery_state(w, params.cautery, heatable, w.meshes[patch.ima].object);
+  s.cutter = surgery::make_fascia_cutter(patch.fascia);
+  tissue::finish_setup(w);
+
+  const char* names[2] = {"left_instrument", "right_instrument"};
+  for (int k = 0; k < 2; ++k) {
+    Station& st = s.stations[k];
+    st.instrument.kind =
+        k == 0 ? surgery::InstrumentKind::forceps : surgery::InstrumentKind::cautery_hook;
+    const scene::Port& port = find_port(s.scene.ports, names[k]);
+    st.arm.port = port.position;
+    const Vec3 target = scene_params.port_target;
+    Pose start;
+    start.translation = port.position + params.start_fraction * (target - port.position);
+    start.rotation = frame_along((target - port.position).normalized());
+    st.arm_state = surgery::make_arm_state(st.arm, start, Pose{});
+    st.state.controller = st.arm_state.tool;
+    st.state.jaw_angle = 0;
+    st.state.closed = true;
+    st.pose = st.previous_pose = surgery::world_pose(st.instrument, st.state);
+    st.geometry.capsules.reserve(4);
+    st.geometry.boxes.reserve(4);
+  }
+  s.contacts.reserve(w.state.particles.size());
+  const scene::Port& camera = find_port(s.scene.ports, "camera");
+  s.camera = surgery::endoscope_view(camera.position, camera.direction, params.endoscope);
+  return s;
+}
+
+SessionInput sample_script(const surgery::InputScript& script, double t) {
+  SessionInput in;
+  in.left = surgery::sample_instrument(script.left, t);
+  in.right = surgery::sample_instrument(script.right, t);
+  in.camera = surgery::sample_camera(script.camera, t);
+  return in;
+}
+
+physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
+                                 physics::Executor& exec) {
+  tissue::TissueWorld& w = s.scene.patch.world;
+  const Real dt = w.model.solver.dt;
+  const double time = w.state.time;  // events are stamped with the step's start
+
+  // 1. Instruments and camera.
+  update_pose(s, s.stations[0], input.left);
+  update_pose(s, s.stations[1], input.right);
+  surgery::EndoscopeParams camera = s.params.endoscope;
+  camera.optics_angle = input.camera.optics;
+  if (input.camera.insertion) camera.insertion = *input.camera.insertion;
+  if (input.camera.roll) camera.roll = *input.camera.roll;
+  const scene::Port& camera_port = find_port(s.scene.ports, "camera");
+  s.camera = surgery::endoscope_view(camera_port.position, camera_port.direction, camera);
+
+  // 2. Grasping with the forceps.
+  Station& forceps = s.stations[0];
+  const std::size_t held_before = s.grasper.held.size();
+  surgery::update_grasp(w, s.params.grasp, forceps.instrument, forceps.state, s.grasper);
+  const std::size_t held = s.grasper.held.size();
+  if (held > 0 && held_before == 0) {
+    s.events.add(time, EventKind::grasp, 0, Tissue::none, static_cast<std::uint32_t>(held));
+  }
+  if (held == 0 && held_before > 0) {
+    s.events.add(time, EventKind::release, 0, Tissue::none,
+                 static_cast<std::uint32_t>(held_before));
+  }
+
+  // 3. Electrocautery.
+  Station& hook = s.stations[1];
+  const surgery::PedalMode pedal = input.right.pedal;
+  if (pedal != hook.pedal) {
+    if (hook.pedal != surgery::PedalMode::off) {
+      s.events.add(time, EventKind::cautery_off, 1, Tissue::none);
+    }
+    if (pedal != surgery::PedalMode::off) {
+      s.events.add(time, EventKind::cautery_on, 1, Tissue::none, 0, input.right.power);
+    }
+    hook.pedal = pedal;
+  }
+  surgery::CauteryParams cautery = s.params.cautery;
+  cautery.power = input.right.power;
+  const std::array<Vec3, 2> e = electrode(s);
+  const surgery::CauteryStep heat =
+      surgery::apply_cautery(w, cautery, pedal, e[0], e[1], dt, s.cautery);
+  s.cautery_energy += heat.energy;
+  if (heat.injured > 0) {
+    s.events.add(time, EventKind::injury, 1, Tissue::ima, heat.injured, heat.max_ima_rise);
+  }
+  if (pedal == surgery::PedalMode::cut && heat.touching > 0) {
+    const Pose& before = hook.previous_pose;
+    const Vec3 a0 = before.translation;
+    const Vec3 b0 = a0 + cautery.electrode_length * before.rotation.col(2);
+    const surgery::FasciaCutResult cut =
+        surgery::cut_fascia(w, s.params.fascia_cut, {a0, b0 - a0, e[0] - a0}, s.cutter);
+    if (cut.cut_edges > 0) {
+      s.fascia_edges_cut += cut.cut_edges;
+      s.events.add(time, EventKind::fascia_cut, 1, Tissue::fascia, cut.cut_edges);
+    }
+    if (cut.edges_split + cut.vertices_copied > 0) surgery::stiffen_coagulated(w, s.cautery);
+    s.strand_cuts.clear();
+    // eq. 10-12 with p at the electrode's tip, where it meets the strands.
+    const Pose tip{hook.pose.rotation, e[1]};
+    const std::uint32_t strands =
+        surgery::cut_strands(w, surgery::cut_plane(tip), s.params.strand_cut.width, s.strand_cuts);
+    if (strands > 0) {
+      s.strands_cut += strands;
+      s.events.add(time, EventKind::strand_cut, 1, Tissue::fat, strands);
+    }
+  }
+
+  // 4. The scene.
+  const physics::StepResult r = scene::step_thorax_scene(s.scene, exec);
+  if (!r.ok()) return r;
+
+  // 5. Contact: tissue out of the instruments, with friction against their motion.
+  bool moved = false;
+  for (std::uint8_t k = 0; k < 2; ++k) {
+    Station& st = s.stations[k];
+    build_geometry(s, st, k == 0 && held > 0);
+    st.contact = surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
+                                                st.geometry, s.params.contact, dt, s.contacts);
+    moved = moved || st.contact.count > 0;
+    record_contacts(s, k, st, time);
+  }
+  // 6. Dissolving strands; surfaces again if contact moved tissue.
+  surgery::dissolve_cut_strands(w, s.params.strand_cut);
+  if (moved) tissue::finish_tissue_step(w);
+  return r;
+}
+
+}  // namespace imasim::session

@@ -1,0 +1,98 @@
+#pragma once
+// A surgical session: the thorax scene with two robotic instruments at their ports (DeBakey
+// forceps on the left, an electrocautery hook on the right), the endoscope at the camera port,
+// and the event stream. One step, given the inputs of that step (a console, or a script):
+//   1. each arm turns its input into the instrument's pose (hand through the arm's scaling and
+//      clutch, or a tool pose), the jaws integrate their buttons (eq. 16), and the instrument
+//      is held out of the heart and the chest wall (it stops at their surface);
+//   2. the forceps grasp or release (and move what they hold);
+//   3. the cautery heats what its electrode touches while the pedal is pressed; in cut mode it
+//      cuts the fascia along the electrode's path (2.4.1) and the strands its plane crosses
+//      (eq. 10-12);
+//   4. the scene steps (heart, tissue, collider);
+//   5. the instruments push tissue out of their shafts and jaws (contact with friction);
+//   6. cut strands dissolve (eq. 13); the events of the step are recorded.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "scene/thorax_scene.hpp"
+#include "surgery/cautery.hpp"
+#include "surgery/endoscope.hpp"
+#include "surgery/events.hpp"
+#include "surgery/fascia_cut.hpp"
+#include "surgery/grasp.hpp"
+#include "surgery/input_script.hpp"
+#include "surgery/robotic_arm.hpp"
+#include "surgery/strand_cut.hpp"
+#include "surgery/tool_contact.hpp"
+
+namespace imasim::session {
+
+struct SessionParams {
+  surgery::GraspParams grasp;
+  surgery::FasciaCutParams fascia_cut;
+  surgery::StrandCutParams strand_cut;
+  surgery::CauteryParams cautery;
+  surgery::ContactParams contact;
+  surgery::EndoscopeParams endoscope;
+  Real electrode_radius = Real(0.0005);  // the hook's wire (unit: m)
+  Real wrist_length = Real(0.008);       // hinge to the shaft's end (unit: m)
+  Real tool_clearance = Real(0.0005);    // kept from the heart and the wall (unit: m)
+  // Where each instrument starts: this fraction of the way from its port to the port target.
+  Real start_fraction = Real(0.75);
+};
+
+// One instrument at its port.
+struct Station {
+  surgery::InstrumentParams instrument;
+  surgery::ArmParams arm;
+  surgery::ArmState arm_state;
+  surgery::InstrumentState state;
+  Pose pose;           // T_world now
+  Pose previous_pose;  // at the previous step
+  Pose previous_controller;
+  surgery::ToolGeometry geometry;
+  surgery::ContactSummary contact;
+  std::array<bool, surgery::kTissueCount> touching{};
+  bool blocked_by_heart = false, blocked_by_wall = false;
+  surgery::PedalMode pedal = surgery::PedalMode::off;
+};
+
+struct SurgicalSession {
+  scene::ThoraxScene scene;
+  SessionParams params;
+  std::array<Station, 2> stations;  // 0: forceps (left port), 1: cautery hook (right port)
+  surgery::Grasper grasper;
+  surgery::FasciaCutter cutter;
+  surgery::CauteryState cautery;
+  surgery::EndoscopeView camera;
+  surgery::EventLog events;
+  std::vector<surgery::Tissue> object_tissue;  // per physics object
+  std::vector<surgery::ToolContact> contacts;  // scratch
+  std::vector<surgery::StrandCut> strand_cuts;
+  // Totals for reports.
+  std::uint64_t fascia_edges_cut = 0, strands_cut = 0;
+  Real cautery_energy = 0;  // (unit: J)
+};
+
+struct SessionInput {
+  surgery::InstrumentInput left, right;
+  surgery::CameraInput camera;
+};
+
+// Throws what make_thorax_scene throws, and std::invalid_argument for bad parameters or a scene
+// without its camera and instrument ports.
+SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_params,
+                                      const SessionParams& params);
+
+physics::StepResult step_session(SurgicalSession& session, const SessionInput& input,
+                                 physics::Executor& exec);
+
+// The inputs of a script at time t.
+SessionInput sample_script(const surgery::InputScript& script, double t);
+
+// The cautery electrode's ends (world): from the hinge along f for the electrode's length.
+std::array<Vec3, 2> electrode(const SurgicalSession& session);
+
+}  // namespace imasim::session

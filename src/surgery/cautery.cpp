@@ -1,0 +1,139 @@
+#include "surgery/cautery.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace imasim::surgery {
+namespace {
+
+Real distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const Real len2 = ab.squaredNorm();
+  const Real t = len2 > 0 ? std::clamp((x - a).dot(ab) / len2, Real(0), Real(1)) : Real(0);
+  return (x - (a + t * ab)).norm();
+}
+
+}  // namespace
+
+const char* to_string(PedalMode mode) {
+  switch (mode) {
+    case PedalMode::off:
+      return "off";
+    case PedalMode::cut:
+      return "cut";
+    case PedalMode::coag:
+      return "coag";
+  }
+  return "unknown";
+}
+
+void validate(const CauteryParams& p) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("cautery: ") + what);
+  };
+  require(p.power >= 30 && p.power <= 50, "power must be within [30, 50] W");
+  require(p.electrode_length > 0, "electrode_length must be > 0");
+  require(p.contact_radius > 0, "contact_radius must be > 0");
+  require(p.spread_radius >= p.contact_radius, "spread_radius must be >= contact_radius");
+  require(p.cut_heat_fraction >= 0 && p.cut_heat_fraction <= 1, "cut_heat_fraction in [0, 1]");
+  require(p.coag_heat_fraction >= 0 && p.coag_heat_fraction <= 1, "coag_heat_fraction in [0, 1]");
+  require(p.specific_heat > 0, "specific_heat must be > 0");
+  require(p.coagulation_rise > 0 && p.injury_rise > 0, "temperature rises must be > 0");
+  require(p.coagulated_compliance_factor > 0 && p.coagulated_compliance_factor <= 1,
+          "coagulated_compliance_factor in (0, 1]");
+}
+
+CauteryState make_cautery_state(tissue::TissueWorld& w, const CauteryParams& params,
+                                const std::vector<physics::ObjectId>& heatable,
+                                physics::ObjectId ima_object) {
+  validate(params);
+  CauteryState s;
+  const std::size_t n = w.state.particles.size();
+  s.dose.assign(n, Real(0));
+  s.coagulated.assign(n, 0);
+  s.injured.assign(n, 0);
+  s.heatable.assign(w.model.objects.size(), 0);
+  for (physics::ObjectId o : heatable)
+    s.heatable.at(o) = 1;
+  s.ima_object = ima_object;
+  const std::size_t materials = w.model.materials.size();
+  for (std::size_t m = 0; m < materials; ++m) {
+    physics::ConstraintMaterial stiff = w.model.materials[m];
+    stiff.compliance *= params.coagulated_compliance_factor;
+    s.coagulated_material.push_back(w.model.add_material(stiff));
+  }
+  s.reached.reserve(n);
+  s.weight.reserve(n);
+  return s;
+}
+
+Real temperature_rise(const tissue::TissueWorld& w, const CauteryParams& params,
+                      const CauteryState& s, std::uint32_t i) {
+  const Real inverse_mass = w.state.particles.inverse_mass[i];
+  return s.dose[i] * inverse_mass / params.specific_heat;  // dT = Q / (m c)
+}
+
+CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, PedalMode pedal,
+                          const Vec3& a, const Vec3& b, Real dt, CauteryState& s) {
+  CauteryStep step;
+  step.active = pedal != PedalMode::off;
+  const physics::Particles& P = w.state.particles;
+  s.reached.clear();
+  s.weight.clear();
+  const Real sigma = params.spread_radius / 2;
+  Real weight_sum = 0;
+  for (std::uint32_t i = 0; i < P.size(); ++i) {
+    if (P.is_fixed(i) || !s.heatable[P.object[i]]) continue;
+    const Real r = distance_to_segment(P.position[i], a, b);
+    if (r <= params.contact_radius) ++step.touching;
+    if (r > params.spread_radius) continue;
+    const Real weight = std::exp(-(r / sigma) * (r / sigma));
+    s.reached.push_back(i);
+    s.weight.push_back(weight);
+    weight_sum += weight;
+  }
+  // Heat only while the pedal is pressed and the electrode touches tissue.
+  if (!step.active || step.touching == 0 || !(weight_sum > 0)) return step;
+  const Real fraction =
+      pedal == PedalMode::cut ? params.cut_heat_fraction : params.coag_heat_fraction;
+  step.energy = fraction * params.power * dt;  // eta P dt (unit: J)
+  for (std::size_t k = 0; k < s.reached.size(); ++k) {
+    const std::uint32_t i = s.reached[k];
+    s.dose[i] += step.energy * s.weight[k] / weight_sum;
+    const Real rise = temperature_rise(w, params, s, i);
+    if (!s.coagulated[i] && rise >= params.coagulation_rise) {
+      s.coagulated[i] = 1;
+      ++step.coagulated;
+    }
+    if (P.object[i] == s.ima_object) {
+      step.max_ima_rise = std::max(step.max_ima_rise, rise);
+      if (!s.injured[i] && rise >= params.injury_rise) {
+        s.injured[i] = 1;
+        ++step.injured;
+      }
+    }
+  }
+  if (step.coagulated > 0) stiffen_coagulated(w, s);
+  return step;
+}
+
+void stiffen_coagulated(tissue::TissueWorld& w, CauteryState& s) {
+  if (s.coagulated.size() < w.state.particles.size()) {
+    s.coagulated.resize(w.state.particles.size(), 0);  // particles added since set-up
+  }
+  for (auto& group : w.state.constraints.distance.groups()) {
+    for (physics::DistanceRow& r : group.rows) {
+      if (!s.coagulated[r.i] && !s.coagulated[r.j]) continue;
+      if (r.material < s.coagulated_material.size()) r.material = s.coagulated_material[r.material];
+    }
+  }
+}
+
+Vec3 coagulation_colour(const Vec3& base, Real rise, const CauteryParams& params) {
+  const Vec3 coagulated(Real(0.82), Real(0.72), Real(0.55));
+  const Real s = std::clamp(rise / params.coagulation_rise, Real(0), Real(1));
+  return (1 - s) * base + s * coagulated;
+}
+
+}  // namespace imasim::surgery

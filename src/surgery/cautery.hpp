@@ -1,0 +1,81 @@
+#pragma once
+// Electrocautery (SPEC S4, S5): a hook or spatula electrode energised by the foot pedal in cut
+// or coagulation mode at 30-50 W. While the pedal is pressed and the electrode touches tissue
+// (a dynamic tissue particle within `contact_radius` of it), a share of the electrical energy,
+// eta P dt (unit: J), is deposited as heat in the particles within `spread_radius`, weighted by
+// exp(-(r / sigma)^2), sigma = spread_radius / 2. Each particle's cumulative thermal dose Q_i
+// gives its temperature rise dT_i = Q_i / (m_i c) (no cooling: the dose only grows). Past the
+// coagulation rise the tissue is coagulated: its stretch constraints take a stiffer material
+// (compliance times `coagulated_compliance_factor`) and it is drawn in the coagulated colour.
+// On the IMA, a rise past `injury_rise` is a thermal injury. Cut mode's cutting itself (fascia
+// and strands) is the session's: it calls the cutters while this reports contact.
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "surgery/pedal.hpp"
+#include "tissue/tissue_world.hpp"
+
+namespace imasim::surgery {
+
+struct CauteryParams {
+  Real power = 40;                      // P (unit: W), within [30, 50]
+  Real electrode_length = Real(0.008);  // active part from the hinge along f (unit: m)
+  Real contact_radius = Real(0.001);    // touching within this of the electrode (unit: m)
+  Real spread_radius = Real(0.003);     // heat reaches this far (unit: m)
+  // Share of P dt that heats the tissue: cut mode vaporises a thin layer at the edge (most of
+  // the energy leaves as steam), coagulation mode heats the surroundings.
+  Real cut_heat_fraction = Real(0.2), coag_heat_fraction = Real(0.6);
+  Real specific_heat = 3500;   // c of soft tissue (unit: J/(kg K))
+  Real coagulation_rise = 23;  // 37 -> 60 degC coagulates (unit: K)
+  Real injury_rise = 8;        // 37 -> 45 degC injures the IMA's wall (unit: K)
+  Real coagulated_compliance_factor = Real(0.1);
+};
+
+// Throws std::invalid_argument naming the field (power outside [30, 50] W, non-positive sizes).
+void validate(const CauteryParams& params);
+
+struct CauteryState {
+  std::vector<Real> dose;  // cumulative heat per particle (unit: J)
+  std::vector<std::uint8_t> coagulated, injured;
+  std::vector<std::uint8_t> heatable;  // per object: tissue the electrode can heat
+  std::uint32_t ima_object = 0xffffffffu;
+  // Per material: its coagulated counterpart (added to the model at set-up).
+  std::vector<physics::MaterialId> coagulated_material;
+  std::vector<std::uint32_t> reached;  // scratch: particles within the spread radius
+  std::vector<Real> weight;            // scratch
+};
+
+// Set-up: sizes the state for the world's particles and adds the coagulated materials. `heatable`
+// are the objects (physics::ObjectId) of tissue; `ima_object` the vessel's.
+CauteryState make_cautery_state(tissue::TissueWorld& world, const CauteryParams& params,
+                                const std::vector<physics::ObjectId>& heatable,
+                                physics::ObjectId ima_object);
+
+struct CauteryStep {
+  bool active = false;           // pedal pressed
+  std::uint32_t touching = 0;    // particles within the contact radius
+  Real energy = 0;               // heat deposited this step (unit: J)
+  std::uint32_t coagulated = 0;  // particles newly coagulated
+  std::uint32_t injured = 0;     // IMA particles newly injured
+  Real max_ima_rise = 0;         // largest temperature rise on the IMA (unit: K)
+};
+
+// One step with the electrode from a to b (world, unit: m).
+CauteryStep apply_cautery(tissue::TissueWorld& world, const CauteryParams& params, PedalMode pedal,
+                          const Vec3& a, const Vec3& b, Real dt, CauteryState& state);
+
+// Temperature rise of particle i (unit: K); 0 for a fixed particle (its mass is not modelled).
+Real temperature_rise(const tissue::TissueWorld& world, const CauteryParams& params,
+                      const CauteryState& state, std::uint32_t i);
+
+// Gives every stretch constraint on a coagulated particle the coagulated material again (after a
+// topology change rebuilt constraints with the tissue's own material).
+void stiffen_coagulated(tissue::TissueWorld& world, CauteryState& state);
+
+// Display colour: `base` blended towards coagulated tissue's pale brown as the rise approaches
+// the coagulation rise.
+Vec3 coagulation_colour(const Vec3& base, Real rise, const CauteryParams& params);
+
+}  // namespace imasim::surgery

@@ -1,0 +1,120 @@
+// A scripted surgical session: the example script opens the fascia beside the IMA, grasps and
+// retracts the flap, cuts strands and coagulates, headless and deterministically; instruments
+// stop at the heart; heat on the IMA is recorded as injury.
+#include "session/surgical_session.hpp"
+
+#include <gtest/gtest.h>
+
+#include "physics/executor.hpp"
+#include "tissue/topology_change.hpp"
+
+namespace imasim::session {
+namespace {
+
+const std::string kScript = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fascia.script";
+
+SurgicalSession run_script(const surgery::InputScript& script, double seconds, int threads) {
+  SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
+  physics::Executor exec(threads);
+  tissue::TissueWorld& w = s.scene.patch.world;
+  while (w.state.time < seconds) {
+    const physics::StepResult r = step_session(s, sample_script(script, w.state.time), exec);
+    EXPECT_TRUE(r.ok());
+    if (!r.ok()) break;
+  }
+  return s;
+}
+
+TEST(SurgicalSession, TheExampleScriptOpensGraspsCutsAndCoagulates) {
+  const surgery::InputScript script = surgery::load_input_script(kScript);
+  SurgicalSession s = run_script(script, script.end_time() + 0.2, 1);
+  const surgery::EventLog& log = s.events;
+  using surgery::EventKind;
+  EXPECT_GE(log.count(EventKind::fascia_cut), 20u);
+  EXPECT_GE(s.fascia_edges_cut, 50u);
+  EXPECT_GE(log.count(EventKind::strand_cut), 5u);
+  EXPECT_EQ(log.count(EventKind::grasp), 1u);
+  EXPECT_EQ(log.count(EventKind::release), 1u);
+  EXPECT_EQ(log.count(EventKind::cautery_on), 3u);
+  EXPECT_EQ(log.count(EventKind::cautery_off), 3u);
+  EXPECT_EQ(log.count(EventKind::injury), 0u);  // the script keeps 6 mm from the vessel
+  std::size_t coagulated = 0;
+  for (std::uint8_t c : s.cautery.coagulated)
+    coagulated += c;
+  EXPECT_GT(coagulated, 0u);
+  // Events are in time order, and the grasp came before the release.
+  for (std::size_t k = 1; k < log.events.size(); ++k)
+    EXPECT_LE(log.events[k - 1].time, log.events[k].time);
+  // The fascia is open and still sound.
+  tissue::TissueWorld& w = s.scene.patch.world;
+  geometry::MeshCheckOptions checks;
+  checks.min_angle = s.params.fascia_cut.min_angle * (1 - 1e-12);
+  checks.min_area = s.params.fascia_cut.min_area * (1 - 1e-12);
+  EXPECT_EQ(tissue::first_topology_defect(w, s.scene.patch.fascia, checks), "");
+  for (const Vec3& x : w.state.particles.position)
+    ASSERT_TRUE(x.allFinite());
+}
+
+TEST(SurgicalSession, AScriptedSessionIsBitForBitRepeatableWhateverTheThreads) {
+  const surgery::InputScript script = surgery::load_input_script(kScript);
+  const SurgicalSession a = run_script(script, 2.0, 1);
+  const SurgicalSession b = run_script(script, 2.0, 2);
+  EXPECT_EQ(physics::position_hash(a.scene.patch.world.state),
+            physics::position_hash(b.scene.patch.world.state));
+  ASSERT_EQ(a.events.events.size(), b.events.events.size());
+  for (std::size_t k = 0; k < a.events.events.size(); ++k) {
+    EXPECT_EQ(a.events.events[k].time, b.events.events[k].time);
+    EXPECT_EQ(a.events.events[k].kind, b.events.events[k].kind);
+    EXPECT_EQ(a.events.events[k].count, b.events.events[k].count);
+  }
+}
+
+TEST(SurgicalSession, InstrumentsStopAtTheHeart) {
+  SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
+  physics::Executor exec(1);
+  // Command the hook's hinge to the heart's centre.
+  SessionInput in;
+  in.right.source = surgery::PoseSource::tool;
+  in.right.pose = s.stations[1].pose;
+  const Vec3 start = s.stations[1].pose.translation;
+  const Vec3 centre = s.scene.layout.heart_centre;
+  for (int n = 1; n <= 60; ++n) {
+    in.right.pose.translation = start + (centre - start) * (n / 60.0);
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+    const Vec3 hinge = s.stations[1].pose.translation;
+    EXPECT_GE(tissue::heart_signed_distance(s.scene.heart, hinge, 0.01),
+              s.params.tool_clearance * (1 - 1e-9));
+  }
+  EXPECT_TRUE(s.stations[1].touching[static_cast<int>(surgery::Tissue::heart)]);
+  bool began = false;
+  for (const surgery::Event& e : s.events.events)
+    began = began ||
+            (e.kind == surgery::EventKind::contact_begin && e.tissue == surgery::Tissue::heart);
+  EXPECT_TRUE(began);
+}
+
+TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {
+  SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
+  physics::Executor exec(1);
+  // The hook laid across the vessel: the electrode's middle on the centerline.
+  SessionInput in;
+  in.right.source = surgery::PoseSource::tool;
+  in.right.pose = s.stations[1].pose;
+  const Vec3 f = in.right.pose.rotation.col(2);
+  in.right.pose.translation =
+      s.scene.layout.ima_midpoint - 0.5 * s.params.cautery.electrode_length * f;
+  in.right.pedal = surgery::PedalMode::coag;
+  in.right.power = 50;
+  for (int n = 0; n < 200 && s.events.count(surgery::EventKind::injury) == 0; ++n)
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+  ASSERT_GE(s.events.count(surgery::EventKind::injury), 1u);
+  for (const surgery::Event& e : s.events.events) {
+    if (e.kind != surgery::EventKind::injury) continue;
+    EXPECT_EQ(e.tissue, surgery::Tissue::ima);
+    EXPECT_GE(e.value, s.params.cautery.injury_rise);
+    EXPECT_GT(e.count, 0u);
+  }
+}
+
+}  // namespace
+}  // namespace imasim::session
