@@ -110,6 +110,51 @@ TEST(RunCommand, PatientSeedGivesAnotherReproduciblePatient) {
   EXPECT_EQ(typical["skeleton_meshes"].get<int>() % 2, 1);  // sternum + cartilage/rib pairs
 }
 
+TEST(RunCommand, AScriptDrivesTheInstrumentsAndWritesTheEvents) {
+  const std::string events = ::testing::TempDir() + "imasim_cli_events.csv";
+  const Outcome r = run_imasim("run --headless --script " IMASIM_SOURCE_DIR
+                               "/examples/open_fascia.script --seconds 2 --threads 1 --events " +
+                               events + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_EQ(j["steps"], 400);
+  EXPECT_GT(j["events"]["fascia_cut"].get<int>(), 0);
+  EXPECT_EQ(j["events"]["cautery_on"], 1);
+  EXPECT_GT(j["fascia_edges_cut"].get<int>(), 0);
+  EXPECT_EQ(j["finite"], true);
+  std::FILE* f = std::fopen(events.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::array<char, 256> line;
+  ASSERT_NE(std::fgets(line.data(), line.size(), f), nullptr);
+  EXPECT_STREQ(line.data(), "time_s,kind,instrument,tissue,count,value\n");
+  int cuts = 0;
+  while (std::fgets(line.data(), line.size(), f) != nullptr)
+    cuts += std::string(line.data()).find(",fascia_cut,right,fascia,") != std::string::npos;
+  std::fclose(f);
+  EXPECT_EQ(cuts, j["events"]["fascia_cut"].get<int>());
+  // Same inputs, same result, whatever the threads.
+  const auto two = nlohmann::json::parse(
+      run_imasim("run --headless --script " IMASIM_SOURCE_DIR
+                 "/examples/open_fascia.script --seconds 2 --threads 2 --json")
+          .output);
+  EXPECT_EQ(two["state_hash"], j["state_hash"]);
+}
+
+TEST(RunCommand, ABadScriptIsReportedWithItsLine) {
+  const std::string path = ::testing::TempDir() + "imasim_bad.script";
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs("0.0 left jaw open\n0.5 right pedal burn\n", f);
+  std::fclose(f);
+  const Outcome r = run_imasim("run --headless --script " + path);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find(path + ":2:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("pedal"), std::string::npos) << r.output;
+  const Outcome missing = run_imasim("run --headless --script /nonexistent/x.script");
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("/nonexistent/x.script"), std::string::npos);
+}
+
 TEST(SceneCommand, PrintDefaultChecksAndRunsLikeTheBuiltInScene) {
   const std::string path = testing::TempDir() + "imasim_default_scene.toml";
   const Outcome printed = run_imasim("scene print-default > " + path);

@@ -163,7 +163,7 @@ int run_run_command(const RunOptions& o) {
   if (surgical) {
     out["script"] = o.script_file;
     add_session_report(out, *surgical);
-    if (events_out) {
+    if (events_out.is_open()) {
       write_events_csv(events_out, surgical->events);
       if (!events_out) {
         std::cerr << "imasim run: writing the events file " << o.events_file << " failed\n";
