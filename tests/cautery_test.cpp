@@ -16,30 +16,41 @@ Real total_dose(const CauteryState& s) {
   return std::accumulate(s.dose.begin(), s.dose.end(), Real(0));
 }
 
-TEST(Cautery, DoseGrowsOnlyWhileThePedalIsPressedAndTheToolTouchesTissue) {
+// The default patch with the fascia heatable, and an interior fascia vertex v with the
+// electrode a-b passing through it across the sheet.
+struct HeatedFascia {
   tissue::ThoracicPatch patch =
       tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
-  tissue::TissueWorld& w = patch.world;
-  const CauteryParams params;
-  const tissue::MeshObject& fascia = w.meshes[patch.fascia];
-  CauteryState state = make_cautery_state(w, params, {fascia.object}, w.meshes[patch.ima].object);
-  // An interior fascia vertex; the electrode passes through it across the sheet.
-  const std::uint32_t v = fascia.first_particle + 5 * 12 + 6;
+  CauteryParams params;
+  CauteryState state =
+      make_cautery_state(patch.world, params, {patch.world.meshes[patch.fascia].object},
+                         patch.world.meshes[patch.ima].object);
+  std::uint32_t v = patch.world.meshes[patch.fascia].first_particle + 5 * 12 + 6;
+  Vec3 a = patch.world.state.particles.position[v] - Vec3(0, 0.004, 0);
+  Vec3 b = patch.world.state.particles.position[v] + Vec3(0, 0.004, 0);
+};
+
+TEST(Cautery, DoseGrowsOnlyWhileThePedalIsPressedAndTheToolTouchesTissue) {
+  HeatedFascia h;
+  tissue::TissueWorld& w = h.patch.world;
+  const CauteryParams& params = h.params;
+  CauteryState& state = h.state;
+  const std::uint32_t v = h.v;
   ASSERT_FALSE(w.state.particles.is_fixed(v));
-  const Vec3 x = w.state.particles.position[v];
-  const Vec3 a = x - Vec3(0, 0.004, 0), b = x + Vec3(0, 0.004, 0);
+  const Vec3 a = h.a, b = h.b;
   const Vec3 away = Vec3(0, -0.05, 0);
   const Real dt = 0.005;
   // Touching, pedal up: nothing.
   for (int n = 0; n < 10; ++n) {
     const CauteryStep s = apply_cautery(w, params, PedalMode::off, a, b, dt, state);
-    EXPECT_GT(s.touching, 0u);
+    EXPECT_FALSE(s.active);
     EXPECT_EQ(s.energy, 0);
   }
   EXPECT_EQ(total_dose(state), 0);
   // Touching, pedal down: eta P dt per step, all of it into the tissue.
   for (int n = 1; n <= 10; ++n) {
     const CauteryStep s = apply_cautery(w, params, PedalMode::coag, a, b, dt, state);
+    EXPECT_GT(s.touching, 0u);
     EXPECT_EQ(s.energy, params.coag_heat_fraction * params.power * dt);
     EXPECT_NEAR(total_dose(state), n * params.coag_heat_fraction * params.power * dt, 1e-12);
   }
@@ -61,20 +72,15 @@ TEST(Cautery, DoseGrowsOnlyWhileThePedalIsPressedAndTheToolTouchesTissue) {
 }
 
 TEST(Cautery, CoagulatedTissueStiffens) {
-  tissue::ThoracicPatch patch =
-      tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
-  tissue::TissueWorld& w = patch.world;
-  const CauteryParams params;
-  const tissue::MeshObject& fascia = w.meshes[patch.fascia];
-  CauteryState state = make_cautery_state(w, params, {fascia.object}, w.meshes[patch.ima].object);
-  const std::uint32_t v = fascia.first_particle + 5 * 12 + 6;
-  const Vec3 x = w.state.particles.position[v];
+  HeatedFascia h;
+  tissue::TissueWorld& w = h.patch.world;
+  const CauteryParams& params = h.params;
+  CauteryState& state = h.state;
+  const tissue::MeshObject& fascia = w.meshes[h.patch.fascia];
+  const std::uint32_t v = h.v;
   std::uint32_t coagulated = 0;
-  for (int n = 0; n < 400 && !state.coagulated[v]; ++n) {
-    coagulated += apply_cautery(w, params, PedalMode::coag, x - Vec3(0, 0.004, 0),
-                                x + Vec3(0, 0.004, 0), 0.005, state)
-                      .coagulated;
-  }
+  for (int n = 0; n < 400 && !state.coagulated[v]; ++n)
+    coagulated += apply_cautery(w, params, PedalMode::coag, h.a, h.b, 0.005, state).coagulated;
   ASSERT_TRUE(state.coagulated[v]);
   EXPECT_GE(temperature_rise(w, params, state, v), params.coagulation_rise);
   EXPECT_GT(coagulated, 0u);

@@ -1,10 +1,19 @@
 #pragma once
-// Closest point on a triangle to a point, as barycentric coordinates (Voronoi-region method).
+// Closest points to a point: on a segment, and on a triangle as barycentric coordinates
+// (Voronoi-region method).
+#include <algorithm>
 #include <array>
 
 #include "math/types.hpp"
 
 namespace imasim::geometry {
+
+// The parameter t in [0, 1] of the point of segment a-b closest to p (0 for a degenerate one).
+inline Real closest_segment_parameter(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const Real length2 = ab.squaredNorm();
+  return length2 > 0 ? std::clamp((p - a).dot(ab) / length2, Real(0), Real(1)) : Real(0);
+}
 
 struct TrianglePoint {
   std::array<Real, 3> bary = {1, 0, 0};  // weights of a, b, c; sum 1, each >= 0

@@ -195,8 +195,9 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
     st.geometry.boxes.reserve(4);
   }
   s.contacts.reserve(w.state.particles.size());
-  const scene::Port& camera = find_port(s.scene.ports, "camera");
-  s.camera = surgery::endoscope_view(camera.position, camera.direction, params.endoscope);
+  s.camera_port = find_port(s.scene.ports, "camera");
+  s.camera =
+      surgery::endoscope_view(s.camera_port.position, s.camera_port.direction, params.endoscope);
   return s;
 }
 
@@ -221,8 +222,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   camera.optics_angle = input.camera.optics;
   if (input.camera.insertion) camera.insertion = *input.camera.insertion;
   if (input.camera.roll) camera.roll = *input.camera.roll;
-  const scene::Port& camera_port = find_port(s.scene.ports, "camera");
-  s.camera = surgery::endoscope_view(camera_port.position, camera_port.direction, camera);
+  s.camera = surgery::endoscope_view(s.camera_port.position, s.camera_port.direction, camera);
 
   // 2. Grasping with the forceps.
   Station& forceps = s.stations[0];

@@ -66,6 +66,7 @@ struct SurgicalSession {
   surgery::Grasper grasper;
   surgery::FasciaCutter cutter;
   surgery::CauteryState cautery;
+  scene::Port camera_port;
   surgery::EndoscopeView camera;
   surgery::EventLog events;
   std::vector<surgery::Tissue> object_tissue;  // per physics object

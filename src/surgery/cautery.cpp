@@ -4,18 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/closest_point.hpp"
+
 namespace imasim::surgery {
-namespace {
-
-Real distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const Real len2 = ab.squaredNorm();
-  const Real t = len2 > 0 ? std::clamp((x - a).dot(ab) / len2, Real(0), Real(1)) : Real(0);
-  return (x - (a + t * ab)).norm();
-}
-
-}  // namespace
-
 const char* to_string(PedalMode mode) {
   switch (mode) {
     case PedalMode::off:
@@ -78,14 +69,20 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
                           const Vec3& a, const Vec3& b, Real dt, CauteryState& s) {
   CauteryStep step;
   step.active = pedal != PedalMode::off;
+  // No current, no heat: the tissue is only searched while the pedal is pressed.
+  if (!step.active) return step;
   const physics::Particles& P = w.state.particles;
   s.reached.clear();
   s.weight.clear();
   const Real sigma = params.spread_radius / 2;
+  const Vec3 lo = a.cwiseMin(b).array() - params.spread_radius;
+  const Vec3 hi = a.cwiseMax(b).array() + params.spread_radius;
   Real weight_sum = 0;
   for (std::uint32_t i = 0; i < P.size(); ++i) {
+    const Vec3& x = P.position[i];
+    if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any()) continue;
     if (P.is_fixed(i) || !s.heatable[P.object[i]]) continue;
-    const Real r = distance_to_segment(P.position[i], a, b);
+    const Real r = (x - (a + geometry::closest_segment_parameter(x, a, b) * (b - a))).norm();
     if (r <= params.contact_radius) ++step.touching;
     if (r > params.spread_radius) continue;
     const Real weight = std::exp(-(r / sigma) * (r / sigma));
@@ -93,8 +90,8 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
     s.weight.push_back(weight);
     weight_sum += weight;
   }
-  // Heat only while the pedal is pressed and the electrode touches tissue.
-  if (!step.active || step.touching == 0 || !(weight_sum > 0)) return step;
+  // Heat only while the electrode touches tissue.
+  if (step.touching == 0 || !(weight_sum > 0)) return step;
   const Real fraction =
       pedal == PedalMode::cut ? params.cut_heat_fraction : params.coag_heat_fraction;
   step.energy = fraction * params.power * dt;  // eta P dt (unit: J)
@@ -104,6 +101,7 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
     const Real rise = temperature_rise(w, params, s, i);
     if (!s.coagulated[i] && rise >= params.coagulation_rise) {
       s.coagulated[i] = 1;
+      ++s.coagulated_count;
       ++step.coagulated;
     }
     if (P.object[i] == s.ima_object) {
@@ -119,6 +117,7 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
 }
 
 void stiffen_coagulated(tissue::TissueWorld& w, CauteryState& s) {
+  if (s.coagulated_count == 0) return;  // nothing to stiffen: no pass over the constraints
   if (s.coagulated.size() < w.state.particles.size()) {
     s.coagulated.resize(w.state.particles.size(), 0);  // particles added since set-up
   }

@@ -39,6 +39,7 @@ void validate(const CauteryParams& params);
 struct CauteryState {
   std::vector<Real> dose;  // cumulative heat per particle (unit: J)
   std::vector<std::uint8_t> coagulated, injured;
+  std::size_t coagulated_count = 0;
   std::vector<std::uint8_t> heatable;  // per object: tissue the electrode can heat
   std::uint32_t ima_object = 0xffffffffu;
   // Per material: its coagulated counterpart (added to the model at set-up).

@@ -1,5 +1,7 @@
 #include "surgery/tool_contact.hpp"
 
+#include "geometry/closest_point.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -44,8 +46,7 @@ SurfacePoint capsule_surface(const Capsule& c, const Vec3& x) {
   const Vec3 axis = c.b - c.a;
   const Real length2 = axis.squaredNorm();
   // Closest point on the segment; a degenerate segment is a sphere about a.
-  const Real t = length2 > 0 ? std::clamp((x - c.a).dot(axis) / length2, Real(0), Real(1)) : 0;
-  const Vec3 centre = c.a + t * axis;
+  const Vec3 centre = c.a + geometry::closest_segment_parameter(x, c.a, c.b) * axis;
   const Vec3 r = x - centre;
   const Real distance = r.norm();
   Vec3 normal;
