@@ -37,14 +37,38 @@ TEST(ColouredStore, ClothSceneColouringIsValid) {
 }
 
 TEST(ColouredStore, OverflowTakesWhatDoesNotFit) {
-  // 40 constraints all sharing particle 0: 32 colours, then 8 in the overflow group.
+  // 40 constraints all sharing particle 0, all of band 0 (fine objects): the distance store
+  // gives band 0 colours 0-23, so 24 coloured and 16 in band 0's overflow group.
   World w(41);
   for (std::uint32_t i = 1; i <= 40; ++i)
     add_distance(w.state.constraints, w.state.particles, 0, i, w.material);
   const auto& store = w.state.constraints.distance;
   EXPECT_EQ(store.size(), 40u);
-  EXPECT_EQ(store.overflow_size(), 8u);
-  EXPECT_EQ(store.non_empty_groups(), 33u);
+  EXPECT_EQ(store.band_end(0), 24u);
+  EXPECT_EQ(store.overflow_size(), 16u);
+  EXPECT_EQ(store.groups()[ColouredStore<DistanceRow>::overflow_group(0)].rows.size(), 16u);
+  EXPECT_EQ(store.non_empty_groups(), 25u);
+  EXPECT_EQ(validate_state(w.model, w.state), "");
+}
+
+TEST(ColouredStore, ACoarseObjectsRowsColourInBandOne) {
+  // Band 1 (a coarse object's rows, projected at the coarse rate) has colours 24-31 and its own
+  // overflow group, so the two bands never share a colour group.
+  World w(41);
+  w.model.objects.push_back(ObjectParams{});
+  w.model.objects.back().coarse = true;
+  w.state.constraints.set_object_band(1, true);
+  for (std::uint32_t i = 0; i <= 40; ++i)
+    w.state.particles.object[i] = 1;
+  for (std::uint32_t i = 1; i <= 10; ++i)
+    add_distance(w.state.constraints, w.state.particles, 0, i, w.material);
+  const auto& store = w.state.constraints.distance;
+  const auto groups = store.groups();
+  for (std::uint32_t g = 0; g < 24; ++g)
+    EXPECT_TRUE(groups[g].rows.empty()) << g;
+  for (std::uint32_t g = 24; g < 32; ++g)
+    EXPECT_EQ(groups[g].rows.size(), 1u) << g;
+  EXPECT_EQ(groups[ColouredStore<DistanceRow>::overflow_group(1)].rows.size(), 2u);
   EXPECT_EQ(validate_state(w.model, w.state), "");
 }
 

@@ -1,5 +1,5 @@
 // Instrument kinematics (eq. 14-16): the transform chain, jaw integration, its limits, the
-// closed threshold and the jaws' symmetry.
+// closed threshold and the jaws' signed opening (upper towards +n, lower towards -n).
 #include "surgery/instrument.hpp"
 
 #include <gtest/gtest.h>
@@ -65,23 +65,38 @@ TEST(Instrument, ClosedBelowTwoPointEightSixDegrees) {
   EXPECT_TRUE(s.closed);
 }
 
-TEST(Instrument, JawsAreSymmetricAboutTheHingeAxis) {
+TEST(Instrument, UpperJawOpensTowardsPlusNLowerTowardsMinusN) {
   InstrumentParams p;
   InstrumentState s;
   s.controller.rotation = axis_angle(Vec3(1, 2, 3).normalized(), 0.7);
   s.controller.translation = Vec3(0.1, -0.2, 0.3);
-  s.jaw_angle = degrees_to_radians(Real(20));
   const Pose w = world_pose(p, s);
-  const Vec3 upper = jaw_tip(p, upper_jaw_pose(p, s)), lower = jaw_tip(p, lower_jaw_pose(p, s));
-  const Vec3 hinge = w.translation, f = w.rotate(Vec3::UnitZ()), n = w.rotate(Vec3::UnitY());
-  // Mirror images across the plane spanned by the hinge axis and f: equal f components,
-  // opposite n components, each at theta from f; the opening between them is 2 theta.
-  EXPECT_NEAR((upper - hinge).dot(f), (lower - hinge).dot(f), 1e-15);
-  EXPECT_NEAR((upper - hinge).dot(n), -(lower - hinge).dot(n), 1e-15);
-  EXPECT_NEAR((upper - hinge).dot(f), p.jaws.length * std::cos(s.jaw_angle), 1e-15);
-  EXPECT_NEAR(std::abs((upper - hinge).dot(n)), p.jaws.length * std::sin(s.jaw_angle), 1e-15);
-  const Vec3 a = (upper - hinge).normalized(), b = (lower - hinge).normalized();
-  EXPECT_NEAR(std::acos(a.dot(b)), 2 * s.jaw_angle, 1e-7);
+  const Vec3 hinge = w.translation, l = w.rotate(Vec3::UnitX()), n = w.rotate(Vec3::UnitY()),
+             f = w.rotate(Vec3::UnitZ());
+  for (const Real degrees : {Real(5), Real(20), Real(30)}) {
+    SCOPED_TRACE(degrees);
+    s.jaw_angle = degrees_to_radians(degrees);
+    const Real c = std::cos(s.jaw_angle), sn = std::sin(s.jaw_angle), L = p.jaws.length;
+    const Vec3 upper = jaw_tip(p, upper_jaw_pose(p, s)) - hinge;
+    const Vec3 lower = jaw_tip(p, lower_jaw_pose(p, s)) - hinge;
+    // Signed (l, n, f) coordinates of the tips: the upper jaw opens towards +n, the lower
+    // towards -n, both in the plane of f and n (the hinge axis is along l).
+    EXPECT_NEAR(upper.dot(n), L * sn, 1e-15);
+    EXPECT_NEAR(lower.dot(n), -L * sn, 1e-15);
+    EXPECT_GT(upper.dot(n), 0);
+    EXPECT_LT(lower.dot(n), 0);
+    EXPECT_NEAR(upper.dot(f), L * c, 1e-15);
+    EXPECT_NEAR(lower.dot(f), L * c, 1e-15);
+    EXPECT_NEAR(upper.dot(l), 0, 1e-15);
+    EXPECT_NEAR(lower.dot(l), 0, 1e-15);
+    // The jaw frames keep the hinge axis and turn f towards +n (upper) and -n (lower).
+    const Pose up = upper_jaw_pose(p, s), lo = lower_jaw_pose(p, s);
+    EXPECT_NEAR((up.rotate(Vec3::UnitZ()) - (c * f + sn * n)).norm(), 0, 1e-15);
+    EXPECT_NEAR((lo.rotate(Vec3::UnitZ()) - (c * f - sn * n)).norm(), 0, 1e-15);
+    EXPECT_NEAR((up.rotate(Vec3::UnitX()) - l).norm(), 0, 1e-15);
+    EXPECT_NEAR((lo.rotate(Vec3::UnitX()) - l).norm(), 0, 1e-15);
+    EXPECT_NEAR(std::acos(upper.normalized().dot(lower.normalized())), 2 * s.jaw_angle, 1e-7);
+  }
   // Closed jaws coincide.
   s.jaw_angle = 0;
   EXPECT_NEAR((jaw_tip(p, upper_jaw_pose(p, s)) - jaw_tip(p, lower_jaw_pose(p, s))).norm(), 0,

@@ -1,6 +1,7 @@
 // A scripted surgical session: the example script opens the fascia beside the IMA, grasps and
-// retracts the flap, cuts strands and coagulates, headless and deterministically; instruments
-// stop at the heart; heat on the IMA is recorded as injury.
+// retracts the flap, cuts strands and coagulates, headless and deterministically (the vertices
+// its cuts make follow the heart); instruments stop at the heart; heat on the IMA is recorded as
+// injury.
 #include "session/surgical_session.hpp"
 
 #include <gtest/gtest.h>
@@ -53,6 +54,18 @@ TEST(SurgicalSession, TheExampleScriptOpensGraspsCutsAndCoagulates) {
   EXPECT_EQ(tissue::first_topology_defect(w, s.scene.patch.fascia, checks), "");
   for (const Vec3& x : w.state.particles.position)
     ASSERT_TRUE(x.allFinite());
+  // Every fascia vertex, those the cuts made too, follows the heart through one anchor.
+  const tissue::MeshObject& fascia = w.meshes[s.scene.patch.fascia];
+  ASSERT_GT(fascia.particle_count, 480u);
+  std::vector<int> anchors(fascia.particle_count, 0);
+  for (const tissue::HeartField::Anchor& a : s.scene.heart.anchors) {
+    if (a.particle >= fascia.first_particle &&
+        a.particle < fascia.first_particle + fascia.particle_count) {
+      ++anchors[a.particle - fascia.first_particle];
+    }
+  }
+  for (std::uint32_t k = 0; k < fascia.particle_count; ++k)
+    EXPECT_EQ(anchors[k], 1) << "fascia vertex " << k;
 }
 
 TEST(SurgicalSession, AScriptedSessionIsBitForBitRepeatableWhateverTheThreads) {

@@ -1,8 +1,14 @@
-// The thorax scene: the heart keeps tissue out, drives the field, and the run is deterministic.
+// The thorax scene: the heart keeps tissue out, drives the field (also the vertices a cut adds to
+// the anchored fascia), and the run is deterministic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "geometry/edge_adjacency.hpp"
 #include "physics/executor.hpp"
 #include "scene/thorax_scene.hpp"
+#include "surgery/fascia_cut.hpp"
+#include "tissue/topology_change.hpp"
 
 namespace imasim::scene {
 namespace {
@@ -78,6 +84,99 @@ TEST(ThoraxScene, StaticHeartTransmitsNoMotion) {
   for (const auto& [distance, amplitude] : ima_motion(false)) {
     EXPECT_LT(amplitude, 1e-15);
   }
+}
+
+// The heart anchor of particle i, if it has one (a scan: the test does not rely on any index).
+const tissue::HeartField::Anchor* anchor_of(const tissue::HeartField& h, std::uint32_t i) {
+  for (const tissue::HeartField::Anchor& a : h.anchors)
+    if (a.particle == i) return &a;
+  return nullptr;
+}
+
+TEST(ThoraxScene, VerticesCutIntoTheFasciasFixedPerimeterMoveWithTheHeart) {
+  ThoraxScene s = make(true);
+  tissue::TissueWorld& w = s.patch.world;
+  physics::Particles& P = w.state.particles;
+  physics::Executor exec(1);
+  for (int n = 0; n < 20; ++n)
+    ASSERT_TRUE(step_thorax_scene(s, exec).ok());
+  const tissue::MeshObject& fascia = w.meshes[s.patch.fascia];
+  const std::uint32_t first = fascia.first_particle;
+  // A perimeter edge (boundary, both ends fixed) in the middle of the sheet's first long side.
+  const geometry::EdgeAdjacency adj = geometry::build_edge_adjacency(tissue::rest_mesh(w, fascia));
+  const geometry::MeshEdge* edge = nullptr;
+  for (const geometry::MeshEdge& e : adj.edges) {
+    if (e.is_interior() || !P.is_fixed(first + e.a) || !P.is_fixed(first + e.b)) continue;
+    if (e.a / 12 != 20 && e.b / 12 != 20) continue;  // row 20 of 40
+    if (e.a % 12 == 0 && e.b % 12 == 0) edge = &e;   // column 0: along the long side
+  }
+  ASSERT_NE(edge, nullptr);
+  const Vec3 xa = P.position[first + edge->a], xb = P.position[first + edge->b];
+  const Vec3 inside = P.position[first + edge->opposite[0]];
+  const Vec3 along = (xb - xa).normalized();
+  const Vec3 normal = fascia.normals[edge->a].normalized();
+  Vec3 across = normal.cross(along).normalized();  // in the sheet, across the edge
+  if (across.dot(inside - xa) < 0) across = -across;
+  // The blade across the sheet, swept from 2 mm outside the edge to 2 mm inside it.
+  const Vec3 middle = (xa + xb) / 2;
+  const surgery::CuttingGeometry g{middle - Real(0.003) * normal - Real(0.002) * across,
+                                   Real(0.006) * normal, Real(0.004) * across};
+  surgery::FasciaCutter cutter = surgery::make_fascia_cutter(s.patch.fascia);
+  const surgery::FasciaCutResult cut = surgery::cut_fascia(w, {}, g, cutter);
+  ASSERT_EQ(cut.status, tissue::EditStatus::applied);
+  ASSERT_EQ(cut.first_new_vertex + cut.new_vertices.size(), fascia.particle_count);
+  tissue::anchor_new_vertices(s.heart, w, s.patch.fascia, cut.first_new_vertex, cut.new_vertices);
+  // Each new vertex's anchor, from its parents' (set-up anchors, or those expected for new
+  // parents, made earlier): the nearer parent's heart vertex, the weight interpolated like the
+  // position.
+  struct Expected {
+    std::uint32_t particle, heart_vertex;
+    Real weight;
+    Vec3 at_cut;
+  };
+  std::vector<Expected> expected;
+  auto parent = [&](std::uint32_t v) -> std::pair<std::uint32_t, Real> {
+    if (v >= cut.first_new_vertex) {
+      const Expected& e = expected[v - cut.first_new_vertex];
+      return {e.heart_vertex, e.weight};
+    }
+    const tissue::HeartField::Anchor* a = anchor_of(s.heart, first + v);
+    EXPECT_NE(a, nullptr) << "fascia vertex " << v;
+    return a ? std::pair{a->heart_vertex, a->weight} : std::pair{0u, Real(0)};
+  };
+  std::uint32_t fixed = 0;
+  for (std::size_t k = 0; k < cut.new_vertices.size(); ++k) {
+    const tissue::NewVertex& nv = cut.new_vertices[k];
+    const std::uint32_t i = first + cut.first_new_vertex + static_cast<std::uint32_t>(k);
+    const auto [ha, wa] = parent(nv.a);
+    const auto [hb, wb] = parent(nv.b);
+    expected.push_back(
+        {i, nv.t <= Real(0.5) ? ha : hb, (1 - nv.t) * wa + nv.t * wb, P.position[i]});
+    const tissue::HeartField::Anchor* anchor = anchor_of(s.heart, i);
+    EXPECT_NE(anchor, nullptr) << "new vertex " << k;
+    if (anchor) {
+      EXPECT_EQ(anchor->heart_vertex, expected.back().heart_vertex);
+      EXPECT_EQ(anchor->weight, expected.back().weight);
+    }
+    fixed += P.is_fixed(i) ? 1 : 0;
+  }
+  ASSERT_GE(fixed, 1u);  // the vertex made on the perimeter edge (and any copy of it)
+  // Over the next 60 steps (about 3/4 of a beat) they go where their anchors drive them.
+  Real travelled = 0;
+  for (int n = 0; n < 60; ++n) {
+    ASSERT_TRUE(step_thorax_scene(s, exec).ok());
+    const tissue::HeartField& h = s.heart;
+    for (const Expected& e : expected) {
+      const Vec3 drive = e.weight * (h.current[e.heart_vertex] - h.reference[e.heart_vertex]);
+      EXPECT_NEAR((w.reference[e.particle] - (P.rest_position[e.particle] + drive)).norm(), 0,
+                  1e-15);
+      if (!P.is_fixed(e.particle)) continue;
+      EXPECT_NEAR((P.position[e.particle] - (P.rest_position[e.particle] + drive)).norm(), 0,
+                  1e-15);
+      travelled = std::max(travelled, (P.position[e.particle] - e.at_cut).norm());
+    }
+  }
+  EXPECT_GT(travelled, Real(1e-4));  // they did move with the beating heart
 }
 
 TEST(ThoraxScene, DeterministicAcrossThreadCountsAndHasItsPorts) {

@@ -356,11 +356,12 @@ TEST(ToolContact, GeometryFollowsTheInstrument) {
     EXPECT_NEAR((shaft.b - hinge).norm(), 0, 1e-15);
     EXPECT_NEAR((shaft.a - (hinge - params.shaft_length * f)).norm(), 0, 1e-15);
     EXPECT_EQ(shaft.radius, params.shaft_radius);
-    // Jaws: turned by +-theta about l, so the jaw's f is cos(theta) f -+ sin(theta) n (R(theta,
-    // x) takes (0, 0, 1) to (0, -sin, cos)); each box centred half-way along it.
+    // Jaws: turned by +-theta about the hinge axis -l, so the jaw's f is cos(theta) f +-
+    // sin(theta) n (R(theta, -x) takes (0, 0, 1) to (0, sin, cos)): the upper jaw opens towards
+    // +n, the lower towards -n; each box centred half-way along it.
     const Real c = std::cos(state.jaw_angle), s = std::sin(state.jaw_angle);
     const Real half_length = params.jaws.length / 2;
-    const Vec3 jaw_f[2] = {c * f - s * n, c * f + s * n};
+    const Vec3 jaw_f[2] = {c * f + s * n, c * f - s * n};
     const Pose jaw[2] = {upper_jaw_pose(params, state), lower_jaw_pose(params, state)};
     for (int k = 0; k < 2; ++k) {
       const OrientedBox& box = tool.boxes[static_cast<std::size_t>(k)];

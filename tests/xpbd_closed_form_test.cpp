@@ -118,3 +118,37 @@ TEST(ClosedForm, PbdStiffnessScalesOneProjection) {
 
 }  // namespace
 }  // namespace imasim::physics
+
+namespace imasim::physics {
+namespace {
+
+// An attachment (three linear rows) of compliance alpha holds a particle under gravity at
+// target - m g alpha, exactly, from the first substep on (the rows are independent and one
+// projection solves them); a particle on its target feels no correction (no singular gradient).
+TEST(ClosedForm, AttachmentHangsByMGAlphaAndRestsOnItsTarget) {
+  Model model;
+  model.objects.push_back(ObjectParams{});
+  model.solver.substeps = 4;
+  model.solver.iterations = 1;
+  const double alpha = 1e-3, mass = 0.02;  // m/N, kg
+  const MaterialId id = model.add_material(ConstraintMaterial::xpbd(alpha));
+  State state;
+  state.particles.add(Vec3(0, -mass * 9.81 * alpha, 0), mass, 0);
+  state.particles.add(Vec3(1, 0, 0), mass, 0);
+  add_attachment(state.constraints, state.particles, 0, Vec3::Zero(), id);
+  model.objects.push_back(ObjectParams{});
+  model.objects[1].gravity.setZero();
+  state.particles.object[1] = 1;
+  add_attachment(state.constraints, state.particles, 1, Vec3(1, 0, 0), id);
+  Executor exec(1);
+  for (int n = 0; n < 50; ++n) {
+    ASSERT_TRUE(step(model, state, exec).ok());
+    EXPECT_NEAR(state.particles.position[0].y(), -mass * 9.81 * alpha, 1e-15);
+    EXPECT_NEAR(state.particles.velocity[0].norm(), 0, 1e-12);
+    EXPECT_EQ(state.particles.position[1], Vec3(1, 0, 0));
+    EXPECT_TRUE(state.particles.velocity[1].allFinite());
+  }
+}
+
+}  // namespace
+}  // namespace imasim::physics

@@ -1,6 +1,10 @@
 // XSPH velocity smoothing of the fat (SPEC S2): a common motion is left alone, a particle moving
-// against its neighbours is pulled towards their kernel-weighted mean by the coefficient c.
+// against its neighbours is pulled towards them, each pair normalised symmetrically, so each
+// set's momentum is kept while relative motion is damped.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
 
 #include "precision.hpp"
 #include "tissue/strands.hpp"
@@ -21,7 +25,21 @@ TEST(Xsph, LeavesACommonVelocityAlone) {
   }
 }
 
-TEST(Xsph, PullsAnOutlierTowardsItsNeighboursMean) {
+// W_ij of the smoothing, from the current positions.
+Real kernel(const TissueWorld& w, const StrandSet& set, std::uint32_t i, std::uint32_t j) {
+  const Real r = (w.state.particles.position[j] - w.state.particles.position[i]).norm();
+  return r < set.xsph_radius ? (1 - r / set.xsph_radius) * (1 - r / set.xsph_radius) : Real(0);
+}
+
+// S_k = sum_j W_kj over the neighbours of the set's particle k.
+Real weight_sum(const TissueWorld& w, const StrandSet& set, std::uint32_t k) {
+  Real sum = 0;
+  for (std::uint32_t n = set.neighbour_start[k]; n < set.neighbour_start[k + 1]; ++n)
+    sum += kernel(w, set, set.first_particle + k, set.first_particle + set.neighbours[n]);
+  return sum;
+}
+
+TEST(Xsph, PullsAnOutlierTowardsItsNeighbours) {
   ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
   TissueWorld& w = patch.world;
   const StrandSet& set = w.strands[patch.fascia_fat];
@@ -36,18 +54,90 @@ TEST(Xsph, PullsAnOutlierTowardsItsNeighboursMean) {
   ASSERT_GT(most, 2u);
   const std::uint32_t i = set.first_particle + k_best;
   w.state.particles.velocity[i] = Vec3(0.01, 0, 0);
+  const Real c = set.xsph_coefficient, S_i = weight_sum(w, set, k_best);
   smooth_strand_velocities(w);
-  // Its neighbours are at rest: v_i' = v_i + c (0 - v_i) = (1 - c) v_i.
-  EXPECT_NEAR(w.state.particles.velocity[i].x(), (1 - set.xsph_coefficient) * 0.01, 1e-15);
-  // Each neighbour within h gains a share of it, never more than c v_i.
+  // Its neighbours are at rest: v_i' = v_i (1 - c sum_j W_ij / max(S_i, S_j)), and each
+  // neighbour gains what it loses, v_j' = c W_ij / max(S_i, S_j) v_i <= c v_i.
+  Real kept = 1, given = 0;
   int moved = 0;
   for (std::uint32_t n = set.neighbour_start[k_best]; n < set.neighbour_start[k_best + 1]; ++n) {
-    const double vx = w.state.particles.velocity[set.first_particle + set.neighbours[n]].x();
-    EXPECT_GE(vx, 0.0);
-    EXPECT_LE(vx, set.xsph_coefficient * 0.01 + 1e-15);
+    const std::uint32_t j = set.first_particle + set.neighbours[n];
+    const Real share =
+        c * kernel(w, set, i, j) / std::max(S_i, weight_sum(w, set, set.neighbours[n]));
+    kept -= share;
+    const double vx = w.state.particles.velocity[j].x();
+    EXPECT_NEAR(vx, share * 0.01, 1e-17);
+    EXPECT_LE(vx, c * 0.01);
+    given += vx;
     moved += vx > 0 ? 1 : 0;
   }
   EXPECT_GT(moved, 0);
+  EXPECT_NEAR(w.state.particles.velocity[i].x(), kept * 0.01, 1e-17);
+  EXPECT_GE(kept, 1 - c);
+  EXPECT_NEAR(w.state.particles.velocity[i].x() + given, 0.01, 1e-17);  // momentum kept
+}
+
+TEST(Xsph, KeepsEachSetsMomentumAndReducesRelativeMotion) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  TissueWorld& w = patch.world;
+  physics::Particles& P = w.state.particles;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<Real> u(-0.02, 0.02);  // (unit: m/s)
+  for (Vec3& v : P.velocity)
+    v = Vec3(u(rng), u(rng), u(rng));
+  struct Totals {
+    Vec3 momentum = Vec3::Zero();  // sum m v (unit: kg m/s)
+    Real magnitude = 0;            // sum m |v|, the scale of the rounding
+    Real relative = 0;             // sum m |v - v_mean|^2, twice the kinetic energy about the mean
+  };
+  auto totals = [&](const StrandSet& set) {
+    Totals t;
+    Real mass = 0;
+    for (std::uint32_t k = 0; k < set.particle_count(); ++k) {
+      const std::uint32_t i = set.first_particle + k;
+      if (P.is_fixed(i)) continue;
+      const Real m = 1 / P.inverse_mass[i];
+      t.momentum += m * P.velocity[i];
+      t.magnitude += m * P.velocity[i].norm();
+      mass += m;
+    }
+    const Vec3 mean = t.momentum / mass;
+    for (std::uint32_t k = 0; k < set.particle_count(); ++k) {
+      const std::uint32_t i = set.first_particle + k;
+      if (!P.is_fixed(i)) t.relative += (P.velocity[i] - mean).squaredNorm() / P.inverse_mass[i];
+    }
+    return t;
+  };
+  std::vector<Totals> before;
+  for (const StrandSet& set : w.strands)
+    before.push_back(totals(set));
+  const std::vector<Vec3> velocities = P.velocity;
+  smooth_strand_velocities(w);
+  ASSERT_FALSE(w.strands.empty());
+  for (std::size_t s = 0; s < w.strands.size(); ++s) {
+    SCOPED_TRACE(s);
+    const StrandSet& set = w.strands[s];
+    ASSERT_GT(set.xsph_coefficient, 0);
+    // Equal masses within the set: the pairs' exchanges cancel, to rounding.
+    const Real m0 = P.inverse_mass[set.particle(0, 1)];
+    for (std::uint32_t i = 0; i < set.strand_count; ++i)
+      for (std::uint32_t k = 1; k < set.segments; ++k)
+        ASSERT_EQ(P.inverse_mass[set.particle(i, k)], m0);
+    const Totals after = totals(set);
+    EXPECT_LT((after.momentum - before[s].momentum).norm(),
+              test::ulps(16, double(before[s].magnitude)));
+    EXPECT_LT(after.relative, 0.9 * before[s].relative);
+  }
+  // Particles of no strand set keep their velocities, bit for bit.
+  std::vector<bool> in_set(P.size(), false);
+  for (const StrandSet& set : w.strands)
+    for (std::uint32_t k = 0; k < set.particle_count(); ++k)
+      in_set[set.first_particle + k] = true;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (!in_set[i]) {
+      EXPECT_EQ(P.velocity[i], velocities[i]) << i;
+    }
+  }
 }
 
 TEST(TissueWorld, EachObjectKeepsItsOwnParameters) {

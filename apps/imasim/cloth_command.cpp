@@ -41,7 +41,8 @@ std::shared_ptr<ClothOptions> add_cloth_command(CLI::App& app) {
   cmd->add_option("--max-speed", p.max_speed, "Divergence guard: fastest allowed particle (m/s)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--damping", p.linear_damping, "Linear damping k_l of eq. 4 (kg/s)")
+  cmd->add_option("--damping", p.linear_damping,
+                  "Linear damping k_l of eq. 4: share of velocity removed per 5 ms, in [0, 1)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   auto* pbd = cmd->add_option("--pbd", opt->pbd, "PBD stiffnesses KDIST,KBEND in [0, 1]")

@@ -15,6 +15,7 @@
 #include "scene/thorax_scene.hpp"
 #include "session/surgical_session.hpp"
 #include "session_report.hpp"
+#include "tissue/mesh_object.hpp"
 
 namespace imasim::cli {
 
@@ -37,6 +38,12 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
       ->check(CLI::Range(20.0, 250.0));
   cmd->add_option("--patient-seed", opt->patient_seed,
                   "Virtual patient: 0 = the scene's anatomy, else a seeded variation of it");
+  cmd->add_option("--substeps", opt->substeps,
+                  "Solver substeps per 5 ms step; default: the scene's")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_option("--iterations", opt->iterations,
+                  "Projection sweeps per substep; default: the scene's")
+      ->check(CLI::Range(1, 1000));
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
@@ -63,6 +70,8 @@ int run_run_command(const RunOptions& o) {
   if (o.static_heart) params.playback.beating = false;
   if (o.heart_rate_bpm > 0) params.playback.heart_rate_bpm = Real(o.heart_rate_bpm);
   if (o.patient_seed) params.anatomy.patient_seed = *o.patient_seed;
+  if (o.substeps > 0) params.patch.solver.substeps = o.substeps;
+  if (o.iterations > 0) params.patch.solver.iterations = o.iterations;
   std::optional<surgery::InputScript> script;
   if (!o.script_file.empty()) {
     try {
@@ -111,6 +120,7 @@ int run_run_command(const RunOptions& o) {
   physics::StepResult failure;
   double ima_motion = 0;
   std::uint32_t max_contacts = 0;
+  std::uint64_t missed_heart_contacts = 0;
   std::uint64_t done = 0;
   for (; done < steps; ++done) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -125,6 +135,7 @@ int run_run_command(const RunOptions& o) {
       break;
     }
     max_contacts = std::max(max_contacts, scene.heart.last_contacts);
+    missed_heart_contacts += scene.missed_heart_contacts;
     for (std::uint32_t k = 0; k < ima.particle_count; ++k) {
       const std::uint32_t i = ima.first_particle + k;
       ima_motion = std::max(
@@ -158,7 +169,13 @@ int run_run_command(const RunOptions& o) {
   out["heart_phase"] = scene.heart.phase;
   out["ima_motion_max_m"] = ima_motion;
   out["heart_contacts_max"] = max_contacts;
+  out["missed_heart_contacts"] = missed_heart_contacts;  // a warning: should stay 0
   out["ms_per_step_median"] = median_ms;
+  out["substeps"] = w.model.solver.substeps;
+  out["iterations"] = w.model.solver.iterations;
+  out["fascia_max_displacement_m"] = tissue::max_displacement(w, w.meshes[scene.patch.fascia]);
+  out["vessel_max_displacement_m"] = tissue::max_displacement(w, ima);
+  out["kinetic_energy_j"] = physics::kinetic_energy(w.state.particles);
   out["state_hash"] = to_hex(physics::position_hash(w.state));
   if (surgical) {
     out["script"] = o.script_file;

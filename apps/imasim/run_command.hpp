@@ -18,6 +18,8 @@ struct RunOptions {
   double heart_rate_bpm = 0;                  // 0: the scene's
   std::optional<std::uint64_t> patient_seed;  // unset: the scene's
   int threads = 0;
+  std::uint32_t substeps = 0;    // 0: the scene's
+  std::uint32_t iterations = 0;  // 0: the scene's
   bool json = false;
   std::string script_file;  // empty: no instruments; else a surgical session driven by it
   std::string events_file;  // empty: events only counted; else written there as CSV

@@ -10,7 +10,8 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
        {surgery::EventKind::grasp, surgery::EventKind::release, surgery::EventKind::fascia_cut,
         surgery::EventKind::strand_cut, surgery::EventKind::cautery_on,
         surgery::EventKind::cautery_off, surgery::EventKind::contact_begin,
-        surgery::EventKind::contact_end, surgery::EventKind::injury}) {
+        surgery::EventKind::contact_end, surgery::EventKind::injury,
+        surgery::EventKind::cut_refused}) {
     events[surgery::to_string(kind)] = s.events.count(kind);
   }
   out["events"] = events;
@@ -28,6 +29,10 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
   out["fascia_vertices"] = fascia.particle_count;
   out["fascia_triangles"] = fascia.triangles.size();
   out["held_particles"] = s.grasper.held.size();
+  nlohmann::ordered_json warnings = nlohmann::ordered_json::object();
+  warnings["cuts_refused"] = s.refused_cuts;
+  warnings["missed_tool_contacts"] = s.missed_tool_contacts;
+  out["warnings"] = warnings;
 }
 
 void write_events_csv(std::ostream& out, const surgery::EventLog& log) {

@@ -18,7 +18,7 @@ void require_particle(const Particles& particles, std::uint32_t i) {
 }  // namespace
 
 DistanceHandle add_distance(ConstraintSystem& cs, const Particles& particles, std::uint32_t i,
-                            std::uint32_t j, MaterialId material) {
+                            std::uint32_t j, MaterialId material, Real compliance_scale) {
   require_particle(particles, i);
   require_particle(particles, j);
   if (i == j) throw std::invalid_argument("distance constraint needs two distinct particles");
@@ -26,13 +26,14 @@ DistanceHandle add_distance(ConstraintSystem& cs, const Particles& particles, st
   row.i = i;
   row.j = j;
   row.rest_length = (particles.rest_position[i] - particles.rest_position[j]).norm();
+  row.compliance_scale = compliance_scale;
   row.material = material;
-  return cs.distance.add(row);
+  return cs.distance.add(row, cs.band_of(particles, i));
 }
 
 DihedralHandle add_dihedral(ConstraintSystem& cs, const Particles& particles, std::uint32_t w0,
-                            std::uint32_t w1, std::uint32_t a, std::uint32_t b,
-                            MaterialId material) {
+                            std::uint32_t w1, std::uint32_t a, std::uint32_t b, MaterialId material,
+                            Real compliance_scale) {
   for (std::uint32_t p : {w0, w1, a, b})
     require_particle(particles, p);
   if (w0 == w1 || w0 == a || w0 == b || w1 == a || w1 == b || a == b) {
@@ -46,8 +47,9 @@ DihedralHandle add_dihedral(ConstraintSystem& cs, const Particles& particles, st
                                              x0[a].cast<double>(), x0[b].cast<double>());
   row.rest_cos = static_cast<Real>(std::cos(rest));
   row.rest_sin = static_cast<Real>(std::sin(rest));
+  row.compliance_scale = compliance_scale;
   row.material = material;
-  return cs.dihedral.add(row);
+  return cs.dihedral.add(row, cs.band_of(particles, a));
 }
 
 AttachmentHandle add_attachment(ConstraintSystem& cs, const Particles& particles, std::uint32_t i,
@@ -57,7 +59,7 @@ AttachmentHandle add_attachment(ConstraintSystem& cs, const Particles& particles
   row.i = i;
   row.target = target;
   row.material = material;
-  return cs.attachment.add(row);
+  return cs.attachment.add(row, cs.band_of(particles, i));
 }
 
 bool set_attachment_target(ConstraintSystem& cs, AttachmentHandle h, const Vec3& target) {

@@ -2,70 +2,51 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 
 namespace imasim::physics {
 
-void apply_linear_damping(const Model& model, State& state, Real h, const Executor& exec) {
-  bool any = false;
-  for (const ObjectParams& o : model.objects)
-    any = any || o.linear_damping > 0;
-  if (!any) return;
-  Particles& P = state.particles;
-  exec.for_chunks(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const Real kl = model.objects[P.object[i]].linear_damping;
-      P.velocity[i] /= Real(1) + kl * P.inverse_mass[i] * h;
-    }
-  });
+Real damping_keep(Real k, Real h) {
+  if (!(k > 0)) return Real(1);
+  return std::pow(Real(1) - std::min(k, Real(1)), h / kDampingReferenceStep);
 }
 
-void apply_angular_damping(const Model& model, State& state, Real h) {
-  bool any = false;
-  for (const ObjectParams& o : model.objects)
-    any = any || o.angular_damping > 0;
-  if (!any) return;
+void apply_angular_damping(const Model& model, State& state, std::size_t o, Real h) {
+  const Real rate = 1 - damping_keep(model.objects[o].angular_damping, h);
+  if (rate <= 0) return;
   Particles& P = state.particles;
-  auto& moments = state.scratch.object_moments;
-  std::fill(moments.begin(), moments.begin() + static_cast<std::ptrdiff_t>(model.objects.size()),
-            ObjectMoments{});
-  const std::size_t n = P.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (P.inverse_mass[i] == 0) continue;
-    ObjectMoments& m = moments[P.object[i]];
-    const Real mass = Real(1) / P.inverse_mass[i];
-    m.mass += mass;
-    m.mass_position += mass * P.position[i];
-    m.momentum += mass * P.velocity[i];
+  const ObjectRange& range = state.scratch.object_ranges[o];
+  const auto object = static_cast<ObjectId>(o);
+  const std::uint32_t first = range.dynamic_first, end = range.dynamic_end;
+  // Centre of mass and momentum of the dynamic particles.
+  Real mass = 0;
+  Vec3 mass_position = Vec3::Zero(), momentum = Vec3::Zero();
+  for (std::uint32_t i = first; i < end; ++i) {
+    if (P.object[i] != object || P.inverse_mass[i] == 0) continue;
+    const Real m = 1 / P.inverse_mass[i];
+    mass += m;
+    mass_position += m * P.position[i];
+    momentum += m * P.velocity[i];
   }
-  // Second pass about the centre of mass, for accuracy with objects far from the origin.
-  for (std::size_t i = 0; i < n; ++i) {
-    if (P.inverse_mass[i] == 0) continue;
-    ObjectMoments& m = moments[P.object[i]];
-    if (model.objects[P.object[i]].angular_damping <= 0) continue;
-    const Real mass = Real(1) / P.inverse_mass[i];
-    const Vec3 r = P.position[i] - m.mass_position / m.mass;
-    m.angular_momentum += mass * r.cross(P.velocity[i]);
-    m.inertia += mass * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+  if (!(mass > 0)) return;
+  const Vec3 centre = mass_position / mass, v_cm = momentum / mass;
+  // Angular momentum and inertia about the centre of mass.
+  Vec3 angular_momentum = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();
+  for (std::uint32_t i = first; i < end; ++i) {
+    if (P.object[i] != object || P.inverse_mass[i] == 0) continue;
+    const Real m = 1 / P.inverse_mass[i];
+    const Vec3 r = P.position[i] - centre;
+    angular_momentum += m * r.cross(P.velocity[i]);
+    inertia += m * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
   }
-  for (std::size_t o = 0; o < model.objects.size(); ++o) {
-    ObjectMoments& m = moments[o];
-    const Real kc = model.objects[o].angular_damping;
-    if (kc <= 0 || m.mass <= 0) continue;
-    // A line or a point has a singular inertia tensor: no defined rigid rotation to damp.
-    const Real scale = m.inertia.trace();
-    if (!(std::abs(m.inertia.determinant()) > Real(1e-12) * scale * scale * scale)) {
-      continue;  // delta_omega stays zero
-    }
-    const Vec3 omega = m.inertia.inverse() * m.angular_momentum;
-    const Vec3 damped = (m.inertia + kc * h * Mat3::Identity()).inverse() * m.angular_momentum;
-    m.delta_omega = damped - omega;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    if (P.inverse_mass[i] == 0) continue;
-    const ObjectMoments& m = moments[P.object[i]];
-    if (model.objects[P.object[i]].angular_damping <= 0) continue;
-    const Vec3 r = P.position[i] - m.mass_position / m.mass;
-    P.velocity[i] += m.delta_omega.cross(r);
+  const Real scale = inertia.trace();
+  if (!(std::abs(inertia.determinant()) > Real(1e-12) * scale * scale * scale)) return;
+  const Vec3 omega = inertia.inverse() * angular_momentum;
+  for (std::uint32_t i = first; i < end; ++i) {
+    if (P.object[i] != object || P.inverse_mass[i] == 0) continue;
+    const Vec3 rigid = v_cm + omega.cross(P.position[i] - centre);
+    P.velocity[i] += rate * (rigid - P.velocity[i]);
   }
 }
 

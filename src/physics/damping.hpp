@@ -1,20 +1,29 @@
 #pragma once
-// Damping (eq. 4): F_d = -k_l v per particle and T_d = -k_c omega per object, both integrated
-// implicitly over the substep h so that any k is stable.
+// Damping (eq. 4), SPEC S1 reading: k_l and k_c are dimensionless shares removed per 5 ms
+// (kDampingReferenceStep), applied over a substep of length h as the equivalent rate:
+//   keep(k, h) = (1 - k)^(h / 5 ms),
+// so n substeps of dt / n remove exactly the share k per 5 ms whatever n, the particles' masses
+// and the mesh resolution.
 #include "physics/executor.hpp"
 #include "physics/model.hpp"
 #include "physics/state.hpp"
 
 namespace imasim::physics {
 
-// Linear: m dv/dt = -k_l v  =>  v' = v / (1 + k_l w h), w = 1/m.
-void apply_linear_damping(const Model& model, State& state, Real h, const Executor& exec);
+// The factor a velocity keeps over a time h under damping k (unit of h: s).
+Real damping_keep(Real k, Real h);
 
-// Angular (SPEC S1 reading, after Mueller et al.'s PBD damping): the rigid rotation omega of an
-// object's velocity field about its centre of mass is slowed by the torque -k_c omega:
-//   (I + k_c h E) omega' = L,  v_i += (omega' - omega) x r_i
-// with I the inertia tensor and L the angular momentum about the centre of mass. Fixed
-// particles are left out. Serial, in particle order, so the sums are thread-independent.
-void apply_angular_damping(const Model& model, State& state, Real h);
+// Linear (k_l): v <- keep(k_l, h) v for every dynamic particle, folded into the step's velocity
+// update (step.cpp).
+
+// Angular (k_c), Mueller et al. 2007 ("Position based dynamics", 3.5): per object, the rigid
+// motion of its dynamic particles, v_cm + omega x r_i with omega = I^-1 L about the centre of
+// mass, is kept and each particle's deviation from it is reduced:
+//   v_i <- v_i + (1 - keep(k_c, h)) (v_cm + omega x r_i - v_i).
+// Rigid translation and rotation pass untouched; internal (deforming) motion is damped. An
+// object whose inertia is singular (a line or a point) is not damped: its rotation about itself
+// is undefined. Serial in particle order over the object's dynamic particles (their range as the
+// step found it), so the sums are thread-independent.
+void apply_angular_damping(const Model& model, State& state, std::size_t object, Real h);
 
 }  // namespace imasim::physics

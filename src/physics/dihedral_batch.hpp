@@ -36,7 +36,7 @@ inline void project_dihedral_batch(const DihedralRow* rows, Real* lambda,
     w0[k] = w[r.p[0]], w1[k] = w[r.p[1]], w2[k] = w[r.p[2]], w3[k] = w[r.p[3]];
     rc[k] = r.rest_cos, rs[k] = r.rest_sin;
     const ProjectionTerms& t = ctx.terms[r.material];
-    scale[k] = t.scale, alpha[k] = t.alpha_tilde;
+    scale[k] = t.scale, alpha[k] = t.alpha_tilde * r.compliance_scale;
     lam[k] = lambda[k];
   }
 

@@ -21,8 +21,10 @@ struct DihedralRow {
   // the measured (cos, sin) pair rotated by -theta_rest, which needs no wrapping (see below).
   Real rest_cos = 1;
   Real rest_sin = 0;
+  Real compliance_scale = 1;  // dimensionless, as DistanceRow's
   MaterialId material = 0;
   std::uint32_t slot = 0;
+  using Lambda = Real;
 
   const std::array<std::uint32_t, 4>& particles() const { return p; }
   Real rest_angle() const { return std::atan2(rest_sin, rest_cos); }  // (unit: rad)
@@ -148,7 +150,8 @@ inline void project_dihedral(const DihedralRow& r, Real& lambda, const Projectio
   const Real wg = w0 * g00 + w1 * g11 + w2 * (a0 * a0 * g00 + a1 * a1 * g11 + 2 * a0 * a1 * g01) +
                   w3 * (g.t0 * g.t0 * g00 + g.t1 * g.t1 * g11 + 2 * g.t0 * g.t1 * g01);
   if (!(wg > Real(1e-30))) return;
-  const Real dl = lambda_increment(ctx.terms[r.material], g.value, wg, lambda);
+  const Real dl =
+      lambda_increment(scaled(ctx.terms[r.material], r.compliance_scale), g.value, wg, lambda);
   lambda += dl;
   const Vec3 d0 = (-g.le * g.inv_n1sq * dl) * g.n1;  // dl * g0
   const Vec3 d1 = (-g.le * g.inv_n2sq * dl) * g.n2;  // dl * g1

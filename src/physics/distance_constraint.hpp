@@ -11,8 +11,12 @@ namespace imasim::physics {
 struct DistanceRow {
   std::uint32_t i = 0, j = 0;
   Real rest_length = 0;  // d0 (unit: m)
+  // This row's compliance is its material's times this (dimensionless): a membrane's material
+  // holds 1/(E t) and each edge its share of the mesh (physics/membrane_material.hpp).
+  Real compliance_scale = 1;
   MaterialId material = 0;
-  std::uint32_t slot = 0;  // back-reference for handle bookkeeping
+  std::uint32_t slot = 0;
+  using Lambda = Real;  // back-reference for handle bookkeeping
 
   std::array<std::uint32_t, 2> particles() const { return {i, j}; }
 };
@@ -50,7 +54,8 @@ inline void project_distance(const DistanceRow& r, Real& lambda, const Projectio
   const Real len = d.norm();
   if (!(len > Real(1e-12))) return;
   const Vec3 n = d / len;  // grad_i C = n, grad_j C = -n, |grad|^2 = 1 each
-  const Real dl = lambda_increment(ctx.terms[r.material], len - r.rest_length, w, lambda);
+  const Real dl = lambda_increment(scaled(ctx.terms[r.material], r.compliance_scale),
+                                   len - r.rest_length, w, lambda);
   lambda += dl;
   pi += (wi * dl) * n;
   pj -= (wj * dl) * n;

@@ -14,16 +14,45 @@ struct SolverParams {
   Real dt = Real(0.005);         // step (unit: s); the paper's 5 ms (2.3.1)
   std::uint32_t substeps = 1;    // n substeps per step, each of length dt / n
   std::uint32_t iterations = 5;  // k projection sweeps per substep; the paper's 5 (2.3.1)
-  Real max_speed = 50;           // divergence guard (unit: m/s): a faster particle fails the step
+  Real max_speed = 50;  // divergence guard (unit: m/s): a particle faster over the step fails it
+  // Coarse objects (ObjectParams::coarse) are stepped every coarse_stride-th substep with a
+  // substep coarse_stride times longer: soft bodies that converge with fewer substeps (the fat
+  // strands) cost less. 1 = every object at every substep; a stride that does not divide
+  // substeps is reduced to their greatest common divisor (effective_coarse_stride).
+  std::uint32_t coarse_stride = 1;
+
+  std::uint32_t effective_coarse_stride() const;
 };
+
+// Damping (eq. 4) as the paper's engine (iMSTK) reads k_l = 0.03 and k_c = 0.01 (SPEC S1): a
+// dimensionless share of velocity removed per step of this length, the paper's 5 ms. Applied at
+// the equivalent rate per substep, so it depends on neither mass, resolution nor substep count.
+inline constexpr Real kDampingReferenceStep = Real(0.005);  // (unit: s)
 
 // One simulated object (fascia, vessel, strands ...): its own gravity and damping (eq. 4).
 struct ObjectParams {
   std::string name;
   Vec3 gravity = Vec3(0, Real(-9.81), 0);  // external acceleration a_ext of eq. 1 (unit: m/s^2)
-  Real linear_damping = 0;                 // k_l of eq. 4 (unit: kg/s)
-  Real angular_damping = 0;                // k_c of eq. 4 (unit: kg*m^2/s)
+  // k_l of eq. 4: share of every particle's velocity removed per 5 ms, in [0, 1).
+  Real linear_damping = 0;
+  // k_c of eq. 4 on a deformable body: share of each particle's deviation from the body's rigid
+  // motion removed per 5 ms, in [0, 1] (Mueller et al. 2007, PBD damping): rigid translation and
+  // rotation are never slowed.
+  Real angular_damping = 0;
+  // Stepped at the coarse rate (SolverParams::coarse_stride). Its constraints must join only its
+  // own particles or other coarse ones (they are projected in its substeps only).
+  bool coarse = false;
 };
+
+inline std::uint32_t SolverParams::effective_coarse_stride() const {
+  std::uint32_t a = coarse_stride < 1 ? 1 : coarse_stride, b = substeps < 1 ? 1 : substeps;
+  while (b != 0) {
+    const std::uint32_t r = a % b;
+    a = b;
+    b = r;
+  }
+  return a;
+}
 
 struct Model {
   SolverParams solver;

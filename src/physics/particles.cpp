@@ -17,4 +17,13 @@ std::uint32_t Particles::add(const Vec3& x, Real mass, ObjectId owner) {
   return index;
 }
 
+double kinetic_energy(const Particles& P) {
+  double energy = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.inverse_mass[i] > 0)
+      energy += 0.5 * double(P.velocity[i].squaredNorm() / P.inverse_mass[i]);
+  }
+  return energy;
+}
+
 }  // namespace imasim::physics

@@ -26,4 +26,7 @@ struct Particles {
   bool is_fixed(std::uint32_t i) const { return inverse_mass[i] == 0; }
 };
 
+// Sum of m v^2 / 2 over the dynamic particles (unit: J).
+double kinetic_energy(const Particles& particles);
+
 }  // namespace imasim::physics

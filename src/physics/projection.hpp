@@ -12,6 +12,11 @@ struct ProjectionContext {
   const ProjectionTerms* terms = nullptr;  // indexed by MaterialId
 };
 
+// The terms of a row whose compliance is its material's times `compliance_scale`.
+inline ProjectionTerms scaled(const ProjectionTerms& t, Real compliance_scale) {
+  return {t.scale, t.alpha_tilde * compliance_scale};
+}
+
 // Returns the multiplier increment for a constraint with value c and weighted gradient norm
 // w_grad2 = sum_i w_i |grad_i C|^2; lambda is the accumulated multiplier of this substep.
 inline Real lambda_increment(const ProjectionTerms& t, Real c, Real w_grad2, Real lambda) {

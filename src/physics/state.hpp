@@ -5,35 +5,39 @@
 #include <vector>
 
 #include "physics/constraint_system.hpp"
+#include "physics/contact.hpp"
+#include "physics/follow.hpp"
 #include "physics/model.hpp"
 #include "physics/particles.hpp"
 
 namespace imasim::physics {
 
-// Per-object sums for angular damping (eq. 4), accumulated serially in particle order.
-struct ObjectMoments {
-  Real mass = 0;
-  Vec3 mass_position = Vec3::Zero();  // sum m x
-  Vec3 momentum = Vec3::Zero();       // sum m v
-  Vec3 angular_momentum = Vec3::Zero();
-  Mat3 inertia = Mat3::Zero();
-  Vec3 delta_omega = Vec3::Zero();  // change of the rigid rotation this substep (unit: rad/s)
+// The particles of one object lie in [first, end) (with others' possibly interleaved); its
+// dynamic ones (inverse mass > 0) in [dynamic_first, dynamic_end), refreshed every step.
+struct ObjectRange {
+  std::uint32_t first = 0, end = 0;
+  std::uint32_t dynamic_first = 0, dynamic_end = 0;
 };
 
 // Buffers a step needs, sized by prepare_state() so that stepping never allocates.
 struct StepScratch {
   std::vector<Vec3> saved_position;  // state at step start, restored if the step diverges
   std::vector<Vec3> saved_velocity;
-  std::vector<ProjectionTerms> projection_terms;  // per material, for the current substep
-  std::vector<ObjectMoments> object_moments;
-  std::vector<std::uint32_t> block_first_bad;   // per particle block: first diverging particle
-  std::vector<std::uint32_t> validation_stamp;  // per particle, for invariant checks
+  std::vector<ProjectionTerms> projection_terms;  // per material, for a fine substep
+  std::vector<ProjectionTerms> coarse_terms;      // per material, for a coarse substep
+  std::vector<Real> object_keep;                  // per object: linear damping factor per substep
+  std::vector<ObjectRange> object_ranges;         // per object, for per-object passes
+  std::size_t ranged_particles = 0;               // particle count object_ranges was built for
+  std::vector<std::uint32_t> block_first_bad;     // per particle chunk: first diverging particle
+  std::vector<std::uint32_t> validation_stamp;    // per particle, for invariant checks
 };
 
 struct State {
   Particles particles;
   ConstraintSystem constraints;
-  double time = 0;  // (unit: s)
+  ContactSet contacts;  // gathered before each step by the surfaces' owners, projected in it
+  std::vector<FollowRow> follows;  // refreshed before each step by the couplings' owner
+  double time = 0;                 // (unit: s)
   std::uint64_t step_count = 0;
   StepScratch scratch;
 };

@@ -1,7 +1,9 @@
 #include "physics/step.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
+#include "math/validation_assert.hpp"
 #include "physics/damping.hpp"
 #include "physics/dihedral_batch.hpp"
 #include "physics/validation.hpp"
@@ -27,36 +29,88 @@ namespace {
 // Rows per chunk of a colour group (the unit of parallel work).
 constexpr std::size_t kConstraintChunk = 512;
 
+// Once per step: fixed (kinematic) particles take predicted = position and zero velocity (the
+// substeps then need not visit them: projections never move them), and each object's range of
+// dynamic particles is found, so the per-substep passes skip fixed runs such as the fascia's
+// spare particles.
+void begin_step(const Model& model, State& state) {
+  Particles& P = state.particles;
+  auto& ranges = state.scratch.object_ranges;
+  for (ObjectRange& r : ranges)
+    r.dynamic_first = r.dynamic_end = 0;
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    if (P.inverse_mass[i] == 0) {
+      P.predicted[i] = P.position[i];
+      P.velocity[i].setZero();
+      continue;
+    }
+    if (P.object[i] >= model.objects.size()) continue;  // validate_state reports it
+    ObjectRange& r = ranges[P.object[i]];
+    if (r.dynamic_end == 0) r.dynamic_first = static_cast<std::uint32_t>(i);
+    r.dynamic_end = static_cast<std::uint32_t>(i + 1);
+  }
+}
+
+// The objects stepped in substep s, and the substep length each takes.
+struct SubstepPlan {
+  bool coarse_active = false;
+  Real fine_h = 0, coarse_h = 0;
+  bool active(const ObjectParams& o) const { return !o.coarse || coarse_active; }
+  Real h(const ObjectParams& o) const { return o.coarse ? coarse_h : fine_h; }
+};
+
+// Calls body(begin, end, object) over fixed chunks of every active object's dynamic range, in
+// object order, with the chunk's number across all of them (for per-chunk results).
+template <class Body>
+void for_active_particles(const Model& model, const State& state, const SubstepPlan& plan,
+                          const Executor& exec, const Body& body) {
+  const auto& ranges = state.scratch.object_ranges;
+  std::size_t chunk_base = 0;
+  for (std::size_t o = 0; o < model.objects.size(); ++o) {
+    const ObjectRange& r = ranges[o];
+    if (r.dynamic_end == 0 || !plan.active(model.objects[o])) continue;
+    const std::size_t first = r.dynamic_first, n = r.dynamic_end - r.dynamic_first;
+    const auto object = static_cast<ObjectId>(o);
+    exec.for_chunks(n, kParticleBlock, [&](std::size_t begin, std::size_t end) {
+      body(first + begin, first + end, object, chunk_base + begin / kParticleBlock);
+    });
+    chunk_base += (n + kParticleBlock - 1) / kParticleBlock;
+  }
+}
+
 // Predict (eq. 1). The stored velocity is PBD's step-mean velocity (x(t) - x(t-h)) / h, which
 // under constant acceleration equals v(t) - a h / 2. Substituting v(t) in eq. 1 gives
 //   x* = x + (v + a h) h,
 // the symplectic-Euler prediction, exact in free fall for the mean velocity.
-void predict(const Model& model, Particles& P, Real h, const Executor& exec) {
-  exec.for_chunks(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      if (P.inverse_mass[i] == 0) {
-        P.velocity[i].setZero();
-        P.predicted[i] = P.position[i];
-        continue;
-      }
-      P.velocity[i] += h * model.objects[P.object[i]].gravity;
-      P.predicted[i] = P.position[i] + h * P.velocity[i];
-    }
-  });
+void predict(const Model& model, State& state, const SubstepPlan& plan, const Executor& exec) {
+  Particles& P = state.particles;
+  for_active_particles(model, state, plan, exec,
+                       [&](std::size_t begin, std::size_t end, ObjectId o, std::size_t) {
+                         const ObjectParams& object = model.objects[o];
+                         const Real h = plan.h(object);
+                         const Vec3 dv = h * object.gravity;
+                         for (std::size_t i = begin; i < end; ++i) {
+                           if (P.inverse_mass[i] == 0 || P.object[i] != o) continue;
+                           P.velocity[i] += dv;
+                           P.predicted[i] = P.position[i] + h * P.velocity[i];
+                         }
+                       });
 }
 
-// Projects every colour group of a store, each in parallel over fixed chunks, then the overflow
-// group serially. Within a chunk, Batch::size rows at a time go through Batch::project (SIMD,
-// one row per lane) and the rest through project; chunks are multiples of the batch size, so a
-// row's path does not depend on the thread count.
+// Projects the colour groups of one band of a store, each in parallel over fixed chunks, then
+// the band's overflow group serially. Within a chunk, `batch` rows at a time go through
+// project_batch (SIMD, one row per lane) and the rest through project; chunks are multiples of
+// the batch size, so a row's path does not depend on the thread count.
 template <class Row, class Project, class BatchProject>
-void project_store(ColouredStore<Row>& store, const ProjectionContext& ctx, const Executor& exec,
-                   Project project, std::size_t batch, BatchProject project_batch) {
+void project_store(ColouredStore<Row>& store, std::uint32_t band, const ProjectionContext& ctx,
+                   const Executor& exec, Project project, std::size_t batch,
+                   BatchProject project_batch) {
+  using Store = ColouredStore<Row>;
   auto groups = store.groups();
-  for (std::uint32_t g = 0; g < ColouredStore<Row>::kColourCount; ++g) {
+  for (std::uint32_t g = store.band_first(band); g < store.band_end(band); ++g) {
     auto& group = groups[g];
     const Row* rows = group.rows.data();
-    Real* lambda = group.lambda.data();
+    auto* lambda = group.lambda.data();
     exec.for_chunks(group.rows.size(), kConstraintChunk, [&](std::size_t begin, std::size_t end) {
       std::size_t k = begin;
       for (; batch > 1 && k + batch <= end; k += batch)
@@ -65,36 +119,95 @@ void project_store(ColouredStore<Row>& store, const ProjectionContext& ctx, cons
         project(rows[k], lambda[k], ctx);
     });
   }
-  auto& overflow = groups[ColouredStore<Row>::kOverflow];  // serial, in insertion order
+  auto& overflow = groups[Store::overflow_group(band)];  // serial, in insertion order
   for (std::size_t k = 0; k < overflow.rows.size(); ++k) {
     project(overflow.rows[k], overflow.lambda[k], ctx);
   }
 }
 
-constexpr auto kNoBatch = [](const auto*, Real*, const ProjectionContext&) {};
+constexpr auto kNoBatch = [](const auto*, auto*, const ProjectionContext&) {};
 static_assert(kConstraintChunk % kDihedralBatch == 0);
 
-// v = (p - x) / h, then x = p. Returns the first particle whose velocity is non-finite or
-// faster than max_speed, or kInvalidIndex. Blocks are fixed, so the answer is thread-independent.
-std::uint32_t update_velocities(State& state, Real h, Real max_speed, const Executor& exec) {
+void project_band(ConstraintSystem& cs, std::uint32_t band, const ProjectionContext& ctx,
+                  const Executor& exec) {
+  // Lambdas (not function pointers) so that each projection inlines into its loop.
+  project_store(
+      cs.distance, band, ctx, exec,
+      [](const DistanceRow& r, Real& l, const auto& c) { project_distance(r, l, c); }, 1, kNoBatch);
+  project_store(
+      cs.dihedral, band, ctx, exec,
+      [](const DihedralRow& r, Real& l, const auto& c) { project_dihedral(r, l, c); },
+      kDihedralBatch,
+      [](const DihedralRow* r, Real* l, const auto& c) { project_dihedral_batch(r, l, c); });
+  project_store(
+      cs.attachment, band, ctx, exec,
+      [](const AttachmentRow& r, Vec3& l, const auto& c) { project_attachment(r, l, c); }, 1,
+      kNoBatch);
+}
+
+// The contacts of one band (their particle's object's), in order. Positions hold the substep's
+// start until update_velocities, so they are the friction's reference.
+void project_contacts(const Model& model, State& state, std::uint32_t band, Real tau0, Real tau1,
+                      Real h) {
+  Particles& P = state.particles;
+  for (ContactRow& c : state.contacts.rows) {
+    IMASIM_ASSERT(c.particle < P.size());
+    if (std::uint32_t(model.objects[P.object[c.particle]].coarse) != band) continue;
+    project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), tau0, tau1, h);
+  }
+}
+
+// The follow rows whose destination is in `band`, in order.
+void project_follows(const Model& model, State& state, std::uint32_t band) {
+  Particles& P = state.particles;
+  for (const FollowRow& f : state.follows) {
+    IMASIM_ASSERT(f.source < P.size() && f.destination < P.size());
+    if (std::uint32_t(model.objects[P.object[f.destination]].coarse) != band) continue;
+    if (P.inverse_mass[f.destination] == 0) continue;
+    project_follow(f, P.predicted.data());
+  }
+}
+
+void reset_contact_depths(const Model& model, State& state, std::uint32_t band) {
+  const Particles& P = state.particles;
+  for (ContactRow& c : state.contacts.rows) {
+    if (std::uint32_t(model.objects[P.object[c.particle]].coarse) == band) c.depth = 0;
+  }
+}
+
+// v = (p - x) / h, then x = p, and linear damping (eq. 4): v <- keep v with the object's factor
+// for its substep. Returns the first particle whose velocity is non-finite, or kInvalidIndex.
+// Chunks are fixed, so the answer is thread-independent.
+std::uint32_t update_velocities(const Model& model, State& state, const SubstepPlan& plan,
+                                const Executor& exec) {
   Particles& P = state.particles;
   auto& first_bad = state.scratch.block_first_bad;
-  const std::size_t blocks = (P.size() + kParticleBlock - 1) / kParticleBlock;
-  const Real limit2 = max_speed * max_speed;
-  exec.for_chunks(P.size(), kParticleBlock, [&](std::size_t begin, std::size_t end) {
-    std::uint32_t bad = kInvalidIndex;
-    for (std::size_t i = begin; i < end; ++i) {
-      const Vec3 v = (P.predicted[i] - P.position[i]) / h;
-      if (!(v.squaredNorm() <= limit2) && bad == kInvalidIndex) bad = static_cast<std::uint32_t>(i);
-      P.velocity[i] = v;
-      P.position[i] = P.predicted[i];
-    }
-    first_bad[begin / kParticleBlock] = bad;
-  });
-  for (std::size_t b = 0; b < blocks; ++b) {
-    if (first_bad[b] != kInvalidIndex) return first_bad[b];
+  std::size_t chunks = 0;
+  for_active_particles(model, state, plan, exec,
+                       [&](std::size_t begin, std::size_t end, ObjectId o, std::size_t c) {
+                         const ObjectParams& object = model.objects[o];
+                         const Real inverse_h = 1 / plan.h(object);
+                         const Real keep = state.scratch.object_keep[o];
+                         std::uint32_t bad = kInvalidIndex;
+                         for (std::size_t i = begin; i < end; ++i) {
+                           if (P.inverse_mass[i] == 0 || P.object[i] != o) continue;
+                           const Vec3 v = (P.predicted[i] - P.position[i]) * inverse_h;
+                           if (!v.allFinite() && bad == kInvalidIndex)
+                             bad = static_cast<std::uint32_t>(i);
+                           P.velocity[i] = keep * v;
+                           P.position[i] = P.predicted[i];
+                         }
+                         first_bad[c] = bad;
+                       });
+  for (std::size_t o = 0; o < model.objects.size(); ++o) {
+    const ObjectRange& r = state.scratch.object_ranges[o];
+    if (r.dynamic_end == 0 || !plan.active(model.objects[o])) continue;
+    chunks += (r.dynamic_end - r.dynamic_first + kParticleBlock - 1) / kParticleBlock;
   }
-  return kInvalidIndex;
+  std::uint32_t first = kInvalidIndex;
+  for (std::size_t c = 0; c < chunks; ++c)
+    first = std::min(first, first_bad[c]);
+  return first;
 }
 
 }  // namespace
@@ -110,46 +223,74 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   std::copy(P.velocity.begin(), P.velocity.end(), scratch.saved_velocity.begin());
 
   const SolverParams& solver = model.solver;
-  const Real h = solver.dt / Real(solver.substeps);
+  const std::uint32_t stride = solver.effective_coarse_stride();
+  SubstepPlan plan;
+  plan.fine_h = solver.dt / Real(solver.substeps);
+  plan.coarse_h = plan.fine_h * Real(stride);
   for (std::size_t m = 0; m < model.materials.size(); ++m) {
-    scratch.projection_terms[m] = projection_terms(model.materials[m], h);
+    scratch.projection_terms[m] = projection_terms(model.materials[m], plan.fine_h);
+    scratch.coarse_terms[m] = projection_terms(model.materials[m], plan.coarse_h);
   }
-  const ProjectionContext ctx{P.predicted.data(), P.inverse_mass.data(),
-                              scratch.projection_terms.data()};
+  for (std::size_t o = 0; o < model.objects.size(); ++o) {
+    const ObjectParams& object = model.objects[o];
+    scratch.object_keep[o] = damping_keep(object.linear_damping, plan.h(object));
+  }
+  begin_step(model, state);
+  for (ContactRow& c : state.contacts.rows)
+    c.normal_impulse = 0;
+  const ProjectionContext fine{P.predicted.data(), P.inverse_mass.data(),
+                               scratch.projection_terms.data()};
+  const ProjectionContext coarse{P.predicted.data(), P.inverse_mass.data(),
+                                 scratch.coarse_terms.data()};
 
   StepResult result;
   exec.run([&] {
     for (std::uint32_t s = 0; s < solver.substeps; ++s) {
-      predict(model, P, h, exec);
+      plan.coarse_active = (s + 1) % stride == 0;
+      const Real tau1 = Real(s + 1) / Real(solver.substeps);
+      const Real fine_tau0 = Real(s) / Real(solver.substeps);
+      const Real coarse_tau0 = Real(s + 1 - stride) / Real(solver.substeps);
+      predict(model, state, plan, exec);
       ConstraintSystem& cs = state.constraints;
-      cs.reset_lambda();
-      for (std::uint32_t it = 0; it < solver.iterations; ++it) {
-        // Lambdas (not function pointers) so that each projection inlines into its loop.
-        project_store(
-            cs.distance, ctx, exec,
-            [](const DistanceRow& r, Real& l, const auto& c) { project_distance(r, l, c); }, 1,
-            kNoBatch);
-        project_store(
-            cs.dihedral, ctx, exec,
-            [](const DihedralRow& r, Real& l, const auto& c) { project_dihedral(r, l, c); },
-            kDihedralBatch,
-            [](const DihedralRow* r, Real* l, const auto& c) { project_dihedral_batch(r, l, c); });
-        project_store(
-            cs.attachment, ctx, exec,
-            [](const AttachmentRow& r, Real& l, const auto& c) { project_attachment(r, l, c); }, 1,
-            kNoBatch);
+      cs.reset_lambda(0);
+      reset_contact_depths(model, state, 0);
+      if (plan.coarse_active) {
+        cs.reset_lambda(1);
+        reset_contact_depths(model, state, 1);
       }
-      const std::uint32_t bad = update_velocities(state, h, solver.max_speed, exec);
+      for (std::uint32_t it = 0; it < solver.iterations; ++it) {
+        project_band(cs, 0, fine, exec);
+        project_follows(model, state, 0);
+        project_contacts(model, state, 0, fine_tau0, tau1, plan.fine_h);
+        if (plan.coarse_active) {
+          project_band(cs, 1, coarse, exec);
+          project_follows(model, state, 1);
+          project_contacts(model, state, 1, coarse_tau0, tau1, plan.coarse_h);
+        }
+      }
+      const std::uint32_t bad = update_velocities(model, state, plan, exec);
       if (bad != kInvalidIndex) {
-        const bool finite = P.velocity[bad].allFinite();
-        result = {finite ? StepStatus::speed_limit : StepStatus::non_finite, bad, s};
+        result = {StepStatus::non_finite, bad, s};
         return;
       }
-      apply_linear_damping(model, state, h, exec);
-      apply_angular_damping(model, state, h);
+      for (std::size_t o = 0; o < model.objects.size(); ++o) {
+        const ObjectParams& object = model.objects[o];
+        if (plan.active(object)) apply_angular_damping(model, state, o, plan.h(object));
+      }
     }
   });
 
+  // The speed guard on the step's mean velocity: a substep's velocity can legitimately spike
+  // (a grasp pinching tissue onto the jaws moves it millimetres in one substep).
+  if (result.ok()) {
+    const Real limit = solver.max_speed * solver.dt;
+    for (std::size_t i = 0; i < P.size(); ++i) {
+      if ((P.position[i] - scratch.saved_position[i]).squaredNorm() > limit * limit) {
+        result = {StepStatus::speed_limit, static_cast<std::uint32_t>(i), solver.substeps - 1};
+        break;
+      }
+    }
+  }
   if (!result.ok()) {
     std::copy(scratch.saved_position.begin(), scratch.saved_position.begin() + P.size(),
               P.position.begin());

@@ -53,15 +53,16 @@ std::string validate_model(const Model& model) {
   if (!(std::isfinite(s.dt) && s.dt > 0)) return "solver.dt must be a positive number of seconds";
   if (s.substeps < 1) return "solver.substeps must be at least 1";
   if (s.iterations < 1) return "solver.iterations must be at least 1";
+  if (s.coarse_stride < 1) return "solver.coarse_stride must be at least 1";
   if (!(std::isfinite(s.max_speed) && s.max_speed > 0)) return "solver.max_speed must be > 0";
   if (model.objects.empty()) return "model has no object";
   for (const ObjectParams& o : model.objects) {
     if (!o.gravity.allFinite()) return "object '" + o.name + "': gravity must be finite";
-    if (!finite_nonnegative(o.linear_damping)) {
-      return "object '" + o.name + "': linear_damping must be >= 0";
+    if (!(o.linear_damping >= 0 && o.linear_damping < 1)) {
+      return "object '" + o.name + "': linear_damping must be a share per 5 ms in [0, 1)";
     }
-    if (!finite_nonnegative(o.angular_damping)) {
-      return "object '" + o.name + "': angular_damping must be >= 0";
+    if (!(o.angular_damping >= 0 && o.angular_damping <= 1)) {
+      return "object '" + o.name + "': angular_damping must be a share per 5 ms in [0, 1]";
     }
   }
   for (std::size_t i = 0; i < model.materials.size(); ++i) {
@@ -96,7 +97,19 @@ std::string validate_state(const Model& model, State& state) {
   std::string error = validate_store("distance", cs.distance, model, n, marks, stamp);
   if (error.empty()) error = validate_store("dihedral", cs.dihedral, model, n, marks, stamp);
   if (error.empty()) error = validate_store("attachment", cs.attachment, model, n, marks, stamp);
-  return error;
+  if (!error.empty()) return error;
+  for (const ContactRow& c : state.contacts.rows) {
+    if (c.particle >= state.particles.size()) return "a contact refers to a missing particle";
+    if (!c.point0.allFinite() || !c.point1.allFinite() || !c.normal.allFinite()) {
+      return "a contact's surface is not finite";
+    }
+  }
+  for (const FollowRow& f : state.follows) {
+    if (f.source >= state.particles.size() || f.destination >= state.particles.size()) {
+      return "a coupling row refers to a missing particle";
+    }
+  }
+  return {};
 }
 
 }  // namespace imasim::physics

@@ -58,7 +58,8 @@ ClothScene make_cloth_scene(const ClothParams& p) {
     }
   }
   const geometry::EdgeAdjacency adjacency = geometry::build_edge_adjacency(scene.mesh);
-  physics::add_mesh_constraints(scene.state.constraints, particles, adjacency, 0, stretch, bend);
+  physics::add_mesh_constraints(scene.state.constraints, particles, scene.mesh, adjacency, 0,
+                                stretch, bend, physics::CompliancePerRow::material);
 
   const std::uint32_t lo = (p.n - 1) / 2, hi = p.n / 2;  // equal for odd n
   for (std::uint32_t j = lo; j <= hi; ++j) {

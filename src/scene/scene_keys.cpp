@@ -27,12 +27,12 @@ constexpr double kBig = 1e9;
                0.02, "drawn diameter of a strand particle"},                                      \
       SceneKey{table ".total_mass_kg", RealRef([](P& p) { return &p.patch.member.total_mass; }),  \
                1e-6, 10, "mass spread over the interior strand particles (eq. 5)"},               \
-      SceneKey{table ".compliance_m_per_n",                                                       \
-               RealRef([](P& p) { return &p.patch.member.material.compliance; }), 0, 1,           \
-               "XPBD compliance of each strand segment"},                                         \
-      SceneKey{table ".linear_damping_kg_per_s",                                                  \
-               RealRef([](P& p) { return &p.patch.member.linear_damping; }), 0, 100,              \
-               "k_l of eq. 4"},                                                                   \
+      SceneKey{table ".youngs_modulus_pa",                                                        \
+               RealRef([](P& p) { return &p.patch.member.youngs_modulus; }), 10, 1e8,             \
+               "E of the connective tissue; a strand carries its face's share (fat: 3.25 kPa)"},  \
+      SceneKey{table ".linear_damping",                                                           \
+               RealRef([](P& p) { return &p.patch.member.linear_damping; }), 0, 0.99,             \
+               "k_l of eq. 4: share of velocity removed per 5 ms"},                               \
       SceneKey{table ".xsph_coefficient",                                                         \
                RealRef([](P& p) { return &p.patch.member.xsph_coefficient; }), 0, 1,              \
                "share of the neighbours' mean velocity taken per step (XSPH)"},                   \
@@ -76,9 +76,11 @@ const SceneKey kKeys[] = {
     {"solver.dt_s", RealRef([](P& p) { return &p.patch.solver.dt; }), 1e-5, 0.1,
      "step; the paper's 5 ms (2.3.1)"},
     {"solver.substeps", CountRef([](P& p) { return &p.patch.solver.substeps; }), 1, 1000,
-     "substeps per step"},
+     "substeps per 5 ms step: the solver's accuracy (docs/physics.md)"},
     {"solver.iterations", CountRef([](P& p) { return &p.patch.solver.iterations; }), 1, 1000,
-     "projection sweeps per substep; the paper's 5 (2.3.1)"},
+     "projection sweeps per substep (the paper: 5 sweeps of one 5 ms step)"},
+    {"solver.coarse_stride", CountRef([](P& p) { return &p.patch.solver.coarse_stride; }), 1, 1000,
+     "the fat strands step every this many substeps (gcd with substeps)"},
     {"solver.max_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.max_speed; }), 1e-6, 1e6,
      "divergence guard: a faster particle fails the step"},
 
@@ -135,18 +137,18 @@ const SceneKey kKeys[] = {
     {"fascia.ny", CountRef([](P& p) { return &p.patch.fascia.ny; }), 3, 1024, "vertices along"},
     {"fascia.total_mass_kg", RealRef([](P& p) { return &p.patch.fascia.object.total_mass; }), 1e-6,
      10, "M_total of eq. 5"},
-    {"fascia.linear_damping_kg_per_s",
-     RealRef([](P& p) { return &p.patch.fascia.object.linear_damping; }), 0, 100,
-     "k_l of eq. 4 (paper: 0.03)"},
-    {"fascia.angular_damping_kg_m2_per_s",
-     RealRef([](P& p) { return &p.patch.fascia.object.angular_damping; }), 0, 100,
-     "k_c of eq. 4 (paper: 0.01)"},
-    {"fascia.stretch_compliance_m_per_n",
-     RealRef([](P& p) { return &p.patch.fascia.object.stretch.compliance; }), 0, 1,
-     "XPBD compliance of the distance constraints (eq. 2)"},
-    {"fascia.bending_compliance_rad_per_n_m",
-     RealRef([](P& p) { return &p.patch.fascia.object.bend.compliance; }), 0, 1e6,
-     "XPBD compliance of the dihedral constraints (eq. 3)"},
+    {"fascia.linear_damping", RealRef([](P& p) { return &p.patch.fascia.object.linear_damping; }),
+     0, 0.99, "k_l of eq. 4: share of velocity removed per 5 ms (paper: 0.03)"},
+    {"fascia.angular_damping", RealRef([](P& p) { return &p.patch.fascia.object.angular_damping; }),
+     0, 1, "k_c of eq. 4: share of the non-rigid velocity removed per 5 ms (paper: 0.01)"},
+    {"fascia.youngs_modulus_pa",
+     RealRef([](P& p) { return &p.patch.fascia.object.membrane->youngs_modulus; }), 1e3, 1e9,
+     "E of the fascia in tension (superficial fascia: 2.65 MPa)"},
+    {"fascia.thickness_m", RealRef([](P& p) { return &p.patch.fascia.object.membrane->thickness; }),
+     1e-5, 0.01, "fascia thickness t (stretch stiffness E t)"},
+    {"fascia.bending_stiffness_n_m",
+     RealRef([](P& p) { return &p.patch.fascia.object.membrane->bending_stiffness; }), 0, 1,
+     "D; 0 = the plate's E t^3 / (12 (1 - nu^2))"},
 
     {"vessel.radius_m", RealRef([](P& p) { return &p.patch.vessel.radius; }), 2e-4, 0.01,
      "IMA radius (about 1-1.5 mm)"},
@@ -160,12 +162,12 @@ const SceneKey kKeys[] = {
      "visual tube: rings"},
     {"vessel.total_mass_kg", RealRef([](P& p) { return &p.patch.vessel.object.total_mass; }), 1e-6,
      10, "M_total of eq. 5"},
-    {"vessel.stretch_compliance_m_per_n",
-     RealRef([](P& p) { return &p.patch.vessel.object.stretch.compliance; }), 0, 1,
-     "stiff distance constraints (2.3.2)"},
-    {"vessel.bending_compliance_rad_per_n_m",
-     RealRef([](P& p) { return &p.patch.vessel.object.bend.compliance; }), 0, 1e6,
-     "soft dihedral constraints (2.3.2)"},
+    {"vessel.youngs_modulus_pa",
+     RealRef([](P& p) { return &p.patch.vessel.object.membrane->youngs_modulus; }), 1e3, 1e9,
+     "E of the IMA's wall (about 1.5 MPa)"},
+    {"vessel.wall_thickness_m",
+     RealRef([](P& p) { return &p.patch.vessel.object.membrane->thickness; }), 1e-5, 0.005,
+     "IMA wall thickness (about 0.35 mm); stretch E t, bending E t^3 / (12 (1 - nu^2))"},
 
     IMASIM_STRAND_KEYS("ima_fat", ima_fat),
     IMASIM_STRAND_KEYS("fascia_fat", fascia_fat),

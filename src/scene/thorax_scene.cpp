@@ -76,16 +76,38 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   return scene;
 }
 
-physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec) {
+void prepare_thorax_step(ThoraxScene& scene) {
   tissue::TissueWorld& w = scene.patch.world;
+  const Real dt = w.model.solver.dt;
   // The heart at the end of this step's interval drives the boundary for the step.
-  tissue::advance_heart(scene.heart, w, w.state.time + double(w.model.solver.dt));
+  tissue::advance_heart(scene.heart, w, w.state.time + double(dt));
+  physics::ContactSet& contacts = w.state.contacts;
+  contacts.clear();
+  tissue::gather_heart_contacts(scene.heart, w.state.particles, dt, scene.contact, contacts);
+  tissue::gather_wall_contacts(scene.layout.wall, w.state.particles, dt, scene.contact, contacts);
+}
+
+physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec) {
+  tissue::TissueWorld& w = scene.patch.world;
   const physics::StepResult r = tissue::step_tissue_dynamics(w, exec);
   if (!r.ok()) return r;
-  // Positions at the start of the step: the physics step saved them (state.scratch).
-  tissue::collide_with_heart(scene.heart, w.state.particles, w.state.scratch.saved_position);
+  // Nothing should be inside the heart now; a particle that is was missed by the gathering.
+  scene.missed_heart_contacts =
+      tissue::collide_with_heart(scene.heart, w.state.particles, w.state.scratch.saved_position,
+                                 tissue::kHeartStepSearch, scene.heart.margin);
+  scene.heart.last_contacts = heart_contacts(scene);
   tissue::finish_tissue_step(w);
   return r;
+}
+
+physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec) {
+  prepare_thorax_step(scene);
+  return finish_thorax_step(scene, exec);
+}
+
+std::uint32_t heart_contacts(const ThoraxScene& scene) {
+  return static_cast<std::uint32_t>(
+      scene.patch.world.state.contacts.touching(tissue::kHeartContact, tissue::kHeartContact + 1));
 }
 
 }  // namespace imasim::scene

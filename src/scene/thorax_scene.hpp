@@ -14,6 +14,7 @@
 #include "scene/heart_series.hpp"
 #include "scene/ports.hpp"
 #include "tissue/heart_field.hpp"
+#include "tissue/surface_contacts.hpp"
 #include "tissue/thoracic_patch.hpp"
 
 namespace imasim::scene {
@@ -46,6 +47,10 @@ struct ThoraxScene {
   ThoraxLayout layout;
   tissue::ThoracicPatch patch;
   tissue::HeartField heart;
+  tissue::SurfaceContactParams contact;
+  // Particles the solve's contacts missed and the step's check found inside the heart (put out
+  // after the step, a warning: the search should have caught them).
+  std::uint32_t missed_heart_contacts = 0;
   std::vector<DisplayMesh> skeleton;  // display only
   std::vector<Port> ports;
 };
@@ -54,5 +59,15 @@ struct ThoraxScene {
 ThoraxScene make_thorax_scene(const ThoraxSceneParams& params);
 
 physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec);
+
+// The two halves of step_thorax_scene, for a caller that adds its own contacts in between (the
+// surgical session's instruments): advance the heart and gather the heart's and the wall's
+// contacts for the coming step; then the step itself (tissue dynamics with the contacts inside
+// the solve, the check for missed heart contacts, surfaces).
+void prepare_thorax_step(ThoraxScene& scene);
+physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec);
+
+// Heart contacts in touch at the end of the last step.
+std::uint32_t heart_contacts(const ThoraxScene& scene);
 
 }  // namespace imasim::scene

@@ -11,6 +11,9 @@ namespace {
 using surgery::EventKind;
 using surgery::Tissue;
 
+// Tags of the instruments' contact rows: station k's are kToolContactTag + k.
+constexpr std::uint32_t kToolContactTag = 16;
+
 const scene::Port& find_port(const std::vector<scene::Port>& ports, const std::string& name) {
   for (const scene::Port& p : ports)
     if (p.name == name) return p;
@@ -119,8 +122,12 @@ void build_geometry(SurgicalSession& s, Station& st, bool holding) {
   } else {
     st.geometry.capsules.clear();
     st.geometry.boxes.clear();
-    const std::array<Vec3, 2> e = electrode(s);
-    st.geometry.capsules.push_back({e[0], e[1], s.params.electrode_radius});
+    // In cut mode the energised electrode parts the tissue it meets (the cut, step 3) instead of
+    // pushing it.
+    if (st.pedal != surgery::PedalMode::cut) {
+      const std::array<Vec3, 2> e = electrode(s);
+      st.geometry.capsules.push_back({e[0], e[1], s.params.electrode_radius});
+    }
   }
   // The shaft runs from the wrist, behind the hinge, back through the port.
   const Vec3 back = (st.arm.port - st.pose.translation).normalized();
@@ -264,10 +271,19 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     const Vec3 b0 = a0 + cautery.electrode_length * before.rotation.col(2);
     const surgery::FasciaCutResult cut =
         surgery::cut_fascia(w, s.params.fascia_cut, {a0, b0 - a0, e[0] - a0}, s.cutter);
+    if (cut.status != tissue::EditStatus::applied) {
+      ++s.refused_cuts;
+      s.events.add(time, EventKind::cut_refused, 1, Tissue::fascia);
+    }
     if (cut.cut_edges > 0) {
       s.fascia_edges_cut += cut.cut_edges;
       s.events.add(time, EventKind::fascia_cut, 1, Tissue::fascia, cut.cut_edges);
     }
+    // The cut's new vertices take their parents' temperature and heart anchors.
+    surgery::inherit_cautery_state(w, cautery, s.cutter.mesh, cut.first_new_vertex,
+                                   cut.new_vertices, s.cautery);
+    tissue::anchor_new_vertices(s.scene.heart, w, s.cutter.mesh, cut.first_new_vertex,
+                                cut.new_vertices);
     if (cut.edges_split + cut.vertices_copied > 0) surgery::stiffen_coagulated(w, s.cautery);
     s.strand_cuts.clear();
     // eq. 10-12 with p at the electrode's tip, where it meets the strands.
@@ -280,18 +296,30 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     }
   }
 
-  // 4. The scene.
-  const physics::StepResult r = scene::step_thorax_scene(s.scene, exec);
-  if (!r.ok()) return r;
-
-  // 5. Contact: tissue out of the instruments, with friction against their motion.
-  bool moved = false;
+  // 4. The scene, with the instruments' contacts inside its solve (with the heart's and the
+  // wall's): tissue is kept out of the shafts, the closed jaws and the electrode, with friction
+  // against each contact point's own motion.
+  scene::prepare_thorax_step(s.scene);
   for (std::uint8_t k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
     build_geometry(s, st, k == 0 && held > 0);
-    st.contact = surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
-                                                st.geometry, s.params.contact, dt, s.contacts);
-    moved = moved || st.contact.count > 0;
+    surgery::gather_tool_contacts(w.state.particles, st.geometry, st.previous_pose, st.pose,
+                                  s.params.contact, dt, kToolContactTag + k, w.state.contacts);
+  }
+  const physics::StepResult r = scene::finish_thorax_step(s.scene, exec);
+  if (!r.ok()) return r;
+
+  // 5. What touched; anything the gathering missed is put out now (a warning).
+  bool moved = false;
+  for (std::uint8_t k = 0; k < 2; ++k) {
+    Station& st = s.stations[k];
+    st.contact =
+        surgery::summarize_tool_contacts(w.state.particles, w.state.contacts, kToolContactTag + k);
+    const surgery::ContactSummary missed =
+        surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
+                                       st.geometry, s.params.contact, dt, s.contacts);
+    s.missed_tool_contacts += missed.count;
+    moved = moved || missed.count > 0;
     record_contacts(s, k, st, time);
   }
   // 6. Dissolving strands; surfaces again if contact moved tissue.

@@ -9,8 +9,9 @@
 //   3. the cautery heats what its electrode touches while the pedal is pressed; in cut mode it
 //      cuts the fascia along the electrode's path (2.4.1) and the strands its plane crosses
 //      (eq. 10-12);
-//   4. the scene steps (heart, tissue, collider);
-//   5. the instruments push tissue out of their shafts and jaws (contact with friction);
+//   4. the scene steps (heart, tissue), with the contacts of the heart, the chest wall and the
+//      instruments' shafts, jaws and electrode inside its solve (with friction);
+//   5. what touched is read back for the events; tissue the contacts missed is put out;
 //   6. cut strands dissolve (eq. 13); the events of the step are recorded.
 #include <array>
 #include <cstdint>
@@ -74,6 +75,9 @@ struct SurgicalSession {
   std::vector<surgery::StrandCut> strand_cuts;
   // Totals for reports.
   std::uint64_t fascia_edges_cut = 0, strands_cut = 0;
+  // Warnings: tissue found inside an instrument after the step (the solve's contacts missed it),
+  // cuts refused for want of spare vertices.
+  std::uint64_t missed_tool_contacts = 0, refused_cuts = 0;
   Real cautery_energy = 0;  // (unit: J)
 };
 

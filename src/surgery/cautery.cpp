@@ -41,7 +41,7 @@ CauteryState make_cautery_state(tissue::TissueWorld& w, const CauteryParams& par
   validate(params);
   CauteryState s;
   const std::size_t n = w.state.particles.size();
-  s.dose.assign(n, Real(0));
+  s.rise.assign(n, Real(0));
   s.coagulated.assign(n, 0);
   s.injured.assign(n, 0);
   s.heatable.assign(w.model.objects.size(), 0);
@@ -57,12 +57,6 @@ CauteryState make_cautery_state(tissue::TissueWorld& w, const CauteryParams& par
   s.reached.reserve(n);
   s.weight.reserve(n);
   return s;
-}
-
-Real temperature_rise(const tissue::TissueWorld& w, const CauteryParams& params,
-                      const CauteryState& s, std::uint32_t i) {
-  const Real inverse_mass = w.state.particles.inverse_mass[i];
-  return s.dose[i] * inverse_mass / params.specific_heat;  // dT = Q / (m c)
 }
 
 CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, PedalMode pedal,
@@ -95,10 +89,13 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
   const Real fraction =
       pedal == PedalMode::cut ? params.cut_heat_fraction : params.coag_heat_fraction;
   step.energy = fraction * params.power * dt;  // eta P dt (unit: J)
+  s.dose += step.energy;
   for (std::size_t k = 0; k < s.reached.size(); ++k) {
     const std::uint32_t i = s.reached[k];
-    s.dose[i] += step.energy * s.weight[k] / weight_sum;
-    const Real rise = temperature_rise(w, params, s, i);
+    const Real heat = step.energy * s.weight[k] / weight_sum;  // q_i (unit: J)
+    // dT += q / (m c) with the particle's mass now (reached particles are dynamic: m > 0).
+    s.rise[i] += heat * P.inverse_mass[i] / params.specific_heat;
+    const Real rise = s.rise[i];
     if (!s.coagulated[i] && rise >= params.coagulation_rise) {
       s.coagulated[i] = 1;
       ++s.coagulated_count;
@@ -114,6 +111,34 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
   }
   if (step.coagulated > 0) stiffen_coagulated(w, s);
   return step;
+}
+
+void inherit_cautery_state(const tissue::TissueWorld& w, const CauteryParams& params,
+                           std::uint32_t mesh, std::uint32_t first_new_vertex,
+                           std::span<const tissue::NewVertex> vertices, CauteryState& s) {
+  const physics::Particles& P = w.state.particles;
+  if (s.rise.size() < P.size()) {  // particles added since set-up (not the spares: reserved)
+    s.rise.resize(P.size(), 0);
+    s.coagulated.resize(P.size(), 0);
+    s.injured.resize(P.size(), 0);
+  }
+  const std::uint32_t first = w.meshes[mesh].first_particle;
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const tissue::NewVertex& nv = vertices[k];
+    const std::uint32_t a = first + nv.a, b = first + nv.b;
+    const std::uint32_t i = first + first_new_vertex + static_cast<std::uint32_t>(k);
+    // The same weights as the position (topology_change.cpp): a copy (a == b) gets exactly its
+    // parent's rise.
+    s.rise[i] = (1 - nv.t) * s.rise[a] + nv.t * s.rise[b];
+    const bool coagulated =
+        (s.coagulated[a] && s.coagulated[b]) || s.rise[i] >= params.coagulation_rise;
+    if (coagulated && !s.coagulated[i]) ++s.coagulated_count;
+    s.coagulated[i] = coagulated ? 1 : 0;
+    s.injured[i] = P.object[i] == s.ima_object &&
+                           ((s.injured[a] && s.injured[b]) || s.rise[i] >= params.injury_rise)
+                       ? 1
+                       : 0;
+  }
 }
 
 void stiffen_coagulated(tissue::TissueWorld& w, CauteryState& s) {

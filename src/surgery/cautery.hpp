@@ -3,12 +3,15 @@
 // or coagulation mode at 30-50 W. While the pedal is pressed and the electrode touches tissue
 // (a dynamic tissue particle within `contact_radius` of it), a share of the electrical energy,
 // eta P dt (unit: J), is deposited as heat in the particles within `spread_radius`, weighted by
-// exp(-(r / sigma)^2), sigma = spread_radius / 2. Each particle's cumulative thermal dose Q_i
-// gives its temperature rise dT_i = Q_i / (m_i c) (no cooling: the dose only grows). Past the
-// coagulation rise the tissue is coagulated: its stretch constraints take a stiffer material
-// (compliance times `coagulated_compliance_factor`) and it is drawn in the coagulated colour.
-// On the IMA, a rise past `injury_rise` is a thermal injury. Cut mode's cutting itself (fascia
-// and strands) is the session's: it calls the cutters while this reports contact.
+// exp(-(r / sigma)^2), sigma = spread_radius / 2. Each particle keeps its temperature rise dT_i
+// (an intensive state): heat q deposited on it raises it by q / (m_i c), m_i its mass at that
+// moment (no cooling: the rise only grows). A fascia cut, which re-applies eq. 5's masses for
+// the new vertex count, so leaves every temperature as it was; a vertex it makes takes its
+// parents' rise interpolated like its position (inherit_cautery_state). Past the coagulation
+// rise the tissue is coagulated: its stretch constraints take a stiffer material (compliance
+// times `coagulated_compliance_factor`) and it is drawn in the coagulated colour. On the IMA, a
+// rise past `injury_rise` is a thermal injury. Cut mode's cutting itself (fascia and strands) is
+// the session's: it calls the cutters while this reports contact.
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -16,6 +19,7 @@
 
 #include "surgery/pedal.hpp"
 #include "tissue/tissue_world.hpp"
+#include "tissue/topology_change.hpp"
 
 namespace imasim::surgery {
 
@@ -37,7 +41,8 @@ struct CauteryParams {
 void validate(const CauteryParams& params);
 
 struct CauteryState {
-  std::vector<Real> dose;  // cumulative heat per particle (unit: J)
+  std::vector<Real> rise;  // temperature rise per particle (unit: K)
+  Real dose = 0;           // heat deposited in all, for reports (unit: J)
   std::vector<std::uint8_t> coagulated, injured;
   std::size_t coagulated_count = 0;
   std::vector<std::uint8_t> heatable;  // per object: tissue the electrode can heat
@@ -67,9 +72,21 @@ struct CauteryStep {
 CauteryStep apply_cautery(tissue::TissueWorld& world, const CauteryParams& params, PedalMode pedal,
                           const Vec3& a, const Vec3& b, Real dt, CauteryState& state);
 
-// Temperature rise of particle i (unit: K); 0 for a fixed particle (its mass is not modelled).
-Real temperature_rise(const tissue::TissueWorld& world, const CauteryParams& params,
-                      const CauteryState& state, std::uint32_t i);
+// Temperature rise of particle i (unit: K); 0 for a fixed particle (never heated: its mass is
+// not modelled).
+inline Real temperature_rise(const CauteryState& state, std::uint32_t i) {
+  return state.rise[i];
+}
+
+// After a topology change of world.meshes[mesh] that made `vertices` (new vertex k is mesh-local
+// first_new_vertex + k, its parents made before it): each new vertex takes the rise
+// (1 - t) dT_a + t dT_b of its parents (a copy its parent's), the same weight as its position;
+// it is coagulated (injured, on the IMA) when both parents are (a copy when its parent is) or
+// when that rise reaches the threshold, so the flags keep meaning "the rise reached it".
+// O(new vertices); call it before stiffen_coagulated.
+void inherit_cautery_state(const tissue::TissueWorld& world, const CauteryParams& params,
+                           std::uint32_t mesh, std::uint32_t first_new_vertex,
+                           std::span<const tissue::NewVertex> vertices, CauteryState& state);
 
 // Gives every stretch constraint on a coagulated particle the coagulated material again (after a
 // topology change rebuilt constraints with the tissue's own material).

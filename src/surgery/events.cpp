@@ -22,6 +22,8 @@ const char* to_string(EventKind kind) {
       return "contact_end";
     case EventKind::injury:
       return "injury";
+    case EventKind::cut_refused:
+      return "cut_refused";
   }
   return "unknown";
 }

@@ -21,6 +21,7 @@ enum class EventKind : std::uint8_t {
   contact_end,    // it no longer does
   injury,         // heat on the IMA past its injury threshold; count = particles, value = the
                   // largest temperature rise (unit: K)
+  cut_refused,    // a fascia cut not made: no spare vertices left (a warning, never silent)
 };
 
 enum class Tissue : std::uint8_t { none, fascia, ima, fat, heart, chest_wall };

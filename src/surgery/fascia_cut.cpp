@@ -267,6 +267,7 @@ tissue::TopologyChange split_crossed_triangles(tissue::TissueWorld& world, Plann
   result.edges_split = static_cast<std::uint32_t>(edit.vertices.size());
   tissue::TopologyChange change = tissue::apply_mesh_edit(world, mesh_index, edit);
   if (change.status != tissue::EditStatus::applied) return change;
+  result.new_vertices = edit.vertices;
   // A pending cut edge that is split now continues as its two halves.
   for (const Split& s : pl.splits) {
     if (!s.kept) continue;
@@ -373,7 +374,12 @@ tissue::TopologyChange separate_along_cut(tissue::TissueWorld& world, std::uint3
             [](const auto& a, const auto& b) { return a.first < b.first; });
   edit.replaced = std::move(renamed);
   result.vertices_copied = static_cast<std::uint32_t>(edit.vertices.size());
-  return tissue::apply_mesh_edit(world, mesh_index, edit);
+  tissue::TopologyChange change = tissue::apply_mesh_edit(world, mesh_index, edit);
+  if (change.status == tissue::EditStatus::applied) {
+    result.new_vertices.insert(result.new_vertices.end(), edit.vertices.begin(),
+                               edit.vertices.end());
+  }
+  return change;
 }
 
 void add_counts(const tissue::TopologyChange& c, FasciaCutResult& r) {
@@ -394,6 +400,7 @@ FasciaCutter make_fascia_cutter(std::uint32_t mesh) {
 FasciaCutResult cut_fascia(tissue::TissueWorld& world, const FasciaCutParams& params,
                            const CuttingGeometry& cut, FasciaCutter& cutter) {
   FasciaCutResult result;
+  result.first_new_vertex = world.meshes[cutter.mesh].particle_count;
   SweptArea area;
   if (!make_swept_area(cut, params.proximity, area)) return result;
   const tissue::MeshObject& m = world.meshes[cutter.mesh];

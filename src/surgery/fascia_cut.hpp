@@ -50,6 +50,11 @@ struct FasciaCutResult {
   std::uint32_t vertices_copied = 0;  // copies made to separate the sides
   std::uint32_t cut_edges = 0;        // edges along the cut this step
   std::size_t distance_removed = 0, distance_added = 0, dihedral_removed = 0, dihedral_added = 0;
+  // The vertices this step made, in the order made (the splits, then the copies): new_vertices[k]
+  // is mesh-local vertex first_new_vertex + k, and its parents were made before it. What follows
+  // the mesh per vertex (temperature, heart anchors) is carried over from them.
+  std::uint32_t first_new_vertex = 0;
+  std::vector<tissue::NewVertex> new_vertices;
 };
 
 FasciaCutter make_fascia_cutter(std::uint32_t mesh);

@@ -13,8 +13,10 @@ Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params) {
 namespace {
 
 void release(tissue::TissueWorld& world, Grasper& g) {
-  for (const Grasper::Hold& h : g.held)
+  for (const Grasper::Hold& h : g.held) {
     world.state.constraints.attachment.remove(h.attachment);
+    if (h.particle < world.held.size()) world.held[h.particle] = 0;
+  }
   g.held.clear();
   g.holding = false;
 }
@@ -39,6 +41,7 @@ void grasp(tissue::TissueWorld& world, const GraspParams& params, const Instrume
       if (std::abs(q.x()) > inst.jaws.width / 2 + params.margin) continue;
       if (std::abs(q.y()) > params.capture_thickness) continue;
       const Vec3 local(q.x(), 0, q.z());  // pinched onto the jaws' plane
+      if (i < world.held.size()) world.held[i] = 1;
       g.held.push_back(
           {i, physics::add_attachment(world.state.constraints, P, i, tool.apply(local), g.material),
            local});

@@ -8,7 +8,9 @@
 //
 // Tool frame (as in eq. 10): f = R (0, 0, 1) points along the shaft towards the tip, l = R (1,
 // 0, 0) along the hinge axis, n = R (0, 1, 0) the jaws' opening direction. The frame's origin
-// is the jaws' hinge (the wrist's end).
+// is the jaws' hinge (the wrist's end). alpha = -l: a positive turn about alpha takes f towards
+// alpha x f = n, so the upper jaw opens towards +n (its tip at n = +length sin theta) and the
+// lower towards -n; about +l the upper jaw would open towards -n.
 #include <cstdint>
 
 #include "math/angles.hpp"
@@ -24,9 +26,9 @@ struct JawParams {
   Real max_angle = degrees_to_radians(Real(30));           // theta_max (Fig. 11a) (unit: rad)
   Real closed_threshold = degrees_to_radians(Real(2.86));  // closed below this (unit: rad)
   Real button_rate = degrees_to_radians(Real(120));  // |theta_dot| while a button is held (rad/s)
-  Vec3 hinge_axis = Vec3::UnitX();                   // alpha, in the tool frame
-  Real length = Real(0.012);                         // hinge to jaw tip (unit: m)
-  Real width = Real(0.003);                          // across the hinge axis (unit: m)
+  Vec3 hinge_axis = -Vec3::UnitX();  // alpha, in the tool frame: -l, so the upper jaw opens to +n
+  Real length = Real(0.012);         // hinge to jaw tip (unit: m)
+  Real width = Real(0.003);          // across the hinge axis (unit: m)
 };
 
 struct InstrumentParams {
@@ -55,8 +57,8 @@ inline Pose world_pose(const InstrumentParams& params, const InstrumentState& st
 // eq. 16 with the rate of `command`, clamped to [0, theta_max]; updates `closed`.
 void integrate_jaws(const JawParams& jaws, JawCommand command, Real dt, InstrumentState& state);
 
-// The jaws' poses in the world: the tool pose turned by +theta (upper) and -theta (lower) about
-// the hinge axis.
+// The jaws' poses in the world: the tool pose turned by +theta (upper, opening towards +n) and
+// -theta (lower, towards -n) about the hinge axis.
 Pose upper_jaw_pose(const InstrumentParams& params, const InstrumentState& state);
 Pose lower_jaw_pose(const InstrumentParams& params, const InstrumentState& state);
 

@@ -1,9 +1,9 @@
 #include "surgery/tool_contact.hpp"
 
 #include "geometry/closest_point.hpp"
+#include "math/validation_assert.hpp"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -111,8 +111,8 @@ Real project(const SurfacePoint& s, const ContactParams& params, Real w, Real al
 ContactSummary resolve_tool_contacts(physics::Particles& P, std::span<const Vec3> start,
                                      const ToolGeometry& tool, const ContactParams& params, Real dt,
                                      std::vector<ToolContact>& contacts) {
-  assert(start.size() >= P.size());
-  assert(dt > 0);
+  IMASIM_ASSERT(start.size() >= P.size());
+  IMASIM_ASSERT(dt > 0);
   contacts.clear();
   ContactSummary summary;
   if (tool.capsules.empty() && tool.boxes.empty()) return summary;
@@ -174,6 +174,87 @@ ContactSummary resolve_tool_contacts(physics::Particles& P, std::span<const Vec3
     // step would integrate a velocity that still points into the tool (and drags it back in),
     // and friction's carrying of the particle would be lost from v.
     if (moved) P.velocity[k] = (x - start[k]) / dt;
+  }
+  return summary;
+}
+
+namespace {
+
+Pose inverse(const Pose& p) {
+  const Mat3 rt = p.rotation.transpose();
+  return {rt, -(rt * p.translation)};
+}
+
+}  // namespace
+
+void gather_tool_contacts(const physics::Particles& P, const ToolGeometry& tool, const Pose& before,
+                          const Pose& now, const ContactParams& params, Real dt, std::uint32_t tag,
+                          physics::ContactSet& out, Real search) {
+  if (tool.capsules.empty() && tool.boxes.empty()) return;
+  const Pose back = before * inverse(now);  // a point of the tool now -> where it was
+  // Broad phase: the tool's bounding box now and before, grown by the reach.
+  Vec3 lo = Vec3::Constant(std::numeric_limits<Real>::infinity());
+  Vec3 hi = -lo;
+  auto extend = [&](const Vec3& x, const Vec3& r) {
+    lo = lo.cwiseMin(x - r), hi = hi.cwiseMax(x + r);
+  };
+  for (const Capsule& c : tool.capsules) {
+    for (const Vec3& x : {c.a, c.b, back.apply(c.a), back.apply(c.b)})
+      extend(x, Vec3::Constant(c.radius));
+  }
+  for (const OrientedBox& b : tool.boxes) {
+    const Vec3 extent = b.pose.rotation.cwiseAbs() * b.half_extents;
+    extend(b.pose.translation, extent);
+    extend(back.apply(b.pose.translation), extent);
+  }
+  const Real reach = params.margin + search;
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    if (P.inverse_mass[k] == 0) continue;
+    const Vec3 probe = P.position[k] + dt * P.velocity[k];
+    const Real r = reach + dt * P.velocity[k].norm();
+    if ((probe.array() < lo.array() - r).any() || (probe.array() > hi.array() + r).any()) continue;
+    // One plane per particle and tool: that of the shape nearest it (two planes of one rigid tool
+    // at an angle would only squeeze the particle between them).
+    SurfacePoint nearest;
+    nearest.distance = std::numeric_limits<Real>::infinity();
+    for (const Capsule& c : tool.capsules) {
+      const SurfacePoint s = capsule_surface(c, probe);
+      if (s.distance < nearest.distance) nearest = s;
+    }
+    for (const OrientedBox& b : tool.boxes) {
+      const SurfacePoint s = box_surface(b, probe);
+      if (s.distance < nearest.distance) nearest = s;
+    }
+    auto add = [&](const SurfacePoint& s) {
+      if (!(s.distance <= r)) return;
+      IMASIM_ASSERT(std::abs(s.normal.norm() - 1) < Real(1e-9));
+      physics::ContactRow c;
+      c.particle = static_cast<std::uint32_t>(k);
+      c.tag = tag;
+      c.point1 = s.point;
+      c.point0 = back.apply(s.point);
+      c.normal = s.normal;
+      c.margin = params.margin;
+      c.static_friction = params.static_friction;
+      c.kinetic_friction = params.kinetic_friction;
+      out.rows.push_back(c);
+    };
+    add(nearest);
+  }
+}
+
+ContactSummary summarize_tool_contacts(const physics::Particles& P,
+                                       const physics::ContactSet& contacts, std::uint32_t tag) {
+  ContactSummary summary;
+  for (const physics::ContactRow& c : contacts.rows) {
+    if (c.tag != tag || !(c.depth > 0)) continue;
+    ++summary.count;
+    ++summary.per_object[std::min<std::size_t>(P.object[c.particle], 7)];
+    if (c.depth > summary.max_depth) {
+      summary.max_depth = c.depth;
+      summary.point = c.point1;
+      summary.normal = c.normal;
+    }
   }
   return summary;
 }

@@ -7,14 +7,18 @@
 // tangential slip this step is below mu_s times the normal correction; otherwise the slip is
 // reduced by mu_k times the normal correction.
 //
-// Like the heart collider (tissue/heart_field.hpp, collide_with_heart) it runs once per step,
-// after the solver, given the particles' positions at the step's start; it sets the velocity of
-// every particle it moves to (x_new - x_start) / dt, so position and velocity agree.
+// In the session the instruments' contacts are constraints inside the solve: gather_tool_contacts
+// hands the solver, before each step, the tangent plane of each shape near each particle
+// (physics/contact.hpp); summarize_tool_contacts reads back what touched. resolve_tool_contacts,
+// after the step, puts out what the gathering missed (a warning count) and serves the tests of
+// the shapes: it sets the velocity of every particle it moves to (x_new - x_start) / dt, so
+// position and velocity agree.
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "math/pose.hpp"
+#include "physics/contact.hpp"
 #include "physics/particles.hpp"
 #include "surgery/instrument.hpp"
 
@@ -100,5 +104,24 @@ struct ContactSummary {
 ContactSummary resolve_tool_contacts(physics::Particles& particles, std::span<const Vec3> start,
                                      const ToolGeometry& tool, const ContactParams& params, Real dt,
                                      std::vector<ToolContact>& contacts);
+
+}  // namespace imasim::surgery
+
+namespace imasim::surgery {
+
+// Appends the tool's contacts for the coming step: for each dynamic particle whose predicted
+// position x + v dt comes within `search` (plus the margin and its motion) of a shape, that
+// shape's tangent plane at the nearest point on the tool at the step's end (`tool`, pose `now`),
+// and the same point of the tool at the step's start, carried back by the tool's rigid motion
+// (`before` -> `now`), so each contact point moves with the tool's own velocity there (a shaft
+// pivoting about its port moves fastest at its tip). Rows carry `tag`.
+void gather_tool_contacts(const physics::Particles& particles, const ToolGeometry& tool,
+                          const Pose& before, const Pose& now, const ContactParams& params, Real dt,
+                          std::uint32_t tag, physics::ContactSet& out, Real search = Real(0.002));
+
+// After the step: the rows with `tag` that touched in the step's last substep (count, deepest,
+// contacts by object).
+ContactSummary summarize_tool_contacts(const physics::Particles& particles,
+                                       const physics::ContactSet& contacts, std::uint32_t tag);
 
 }  // namespace imasim::surgery

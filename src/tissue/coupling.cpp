@@ -6,17 +6,33 @@
 
 namespace imasim::tissue {
 
-void apply_coupling(const OffsetCoupling& c, physics::Particles& P, const std::vector<Vec3>& ref) {
+void apply_coupling(const OffsetCoupling& c, physics::Particles& P, const std::vector<Vec3>& ref,
+                    std::span<const Vec3> start, Real dt, std::span<const std::uint8_t> held) {
+  const bool velocities = !start.empty() && dt > 0;
+  const Real inverse_dt = velocities ? 1 / dt : Real(0);
   for (const auto& [j, i] : c.pairs) {
+    if (i < held.size() && held[i]) continue;
+    Vec3 target;
     if (!c.active) {  // eq. 9, beta = 0
-      P.position[i] = ref[i] + c.decay * (P.position[i] - ref[i]);
-      continue;
+      target = ref[i] + c.decay * (P.position[i] - ref[i]);
+    } else {
+      const Vec3 offset = P.position[j] - ref[j];  // O_j
+      const Real len = offset.norm();
+      // eq. 8 (and eq. 9, beta = 1): direction of O_j, length clamped to lambda_max.
+      target =
+          len > c.lambda_max ? Vec3(ref[i] + (c.lambda_max / len) * offset) : Vec3(ref[i] + offset);
     }
-    const Vec3 offset = P.position[j] - ref[j];  // O_j
-    const Real len = offset.norm();
-    // eq. 8 (and eq. 9, beta = 1): direction of O_j, length clamped to lambda_max.
-    P.position[i] =
-        len > c.lambda_max ? Vec3(ref[i] + (c.lambda_max / len) * offset) : Vec3(ref[i] + offset);
+    if (velocities) P.velocity[i] = inverse_dt * (target - start[i]);
+    P.position[i] = target;
+  }
+}
+
+void append_follow_rows(const OffsetCoupling& c, const std::vector<Vec3>& ref,
+                        std::span<const std::uint8_t> held, std::vector<physics::FollowRow>& out) {
+  if (!c.active) return;
+  for (const auto& [j, i] : c.pairs) {
+    if (i < held.size() && held[i]) continue;
+    out.push_back({j, i, ref[j], ref[i], c.lambda_max});
   }
 }
 

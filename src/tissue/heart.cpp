@@ -46,11 +46,33 @@ Real smooth_step(Real x) {
 
 }  // namespace
 
+CardiacPhases cardiac_phases(const HeartParams& p) {
+  const Real s = p.systole_fraction, d = 1 - s;
+  return {s, s + kRapidFillingEnd * d, s + kAtrialStart * d, s + kAtrialEnd * d};
+}
+
 Real heart_volume_fraction(const HeartParams& p, Real t) {
   t -= std::floor(t);
-  const Real s = p.systole_fraction, ef = p.ejection_fraction;
-  const Real ejected = t < s ? smooth_step(t / s) : 1 - smooth_step((t - s) / (1 - s));
-  return 1 - ef * ejected;
+  const Real ef = p.ejection_fraction;
+  const CardiacPhases c = cardiac_phases(p);
+  if (t < c.end_systole) return 1 - ef * smooth_step(t / c.end_systole);  // ejection
+  if (t >= c.atrial_end) return 1;                                        // until the R wave
+  // Diastasis' slope (volume per cycle), which rapid filling ends with and atrial contraction
+  // starts with: the pieces join C1.
+  const Real g = kDiastasisShare * ef / (c.atrial_start - c.end_rapid_filling);
+  const Real v_filled = 1 - ef + kRapidFillingShare * ef;  // at the end of rapid filling
+  if (t < c.end_rapid_filling) {
+    // Hermite from (1 - EF, slope 0) to (v_filled, slope g); rising throughout because
+    // g L = 0.04 EF < 3 * 0.75 EF, whatever s.
+    const Real L = c.end_rapid_filling - c.end_systole, u = (t - c.end_systole) / L;
+    return 1 - ef + kRapidFillingShare * ef * u * u * (3 - 2 * u) + g * L * u * u * (u - 1);
+  }
+  if (t < c.atrial_start) return v_filled + g * (t - c.end_rapid_filling);  // diastasis
+  // Hermite from (v_filled + diastasis' share, slope g) to (1, slope 0); rising throughout
+  // because g L = 0.022 EF < 3 * 0.22 EF.
+  const Real L = c.atrial_end - c.atrial_start, u = (t - c.atrial_start) / L;
+  const Real v_atrial = v_filled + kDiastasisShare * ef;
+  return v_atrial + kAtrialShare * ef * u * u * (3 - 2 * u) + g * L * u * (1 - u) * (1 - u);
 }
 
 HeartModel make_procedural_heart(const HeartParams& p) {

@@ -37,8 +37,33 @@ struct HeartModel {
 
 HeartModel make_procedural_heart(const HeartParams& params);
 
+// The cardiac cycle in the R-R convention of cardiac CT (SPEC S3 reading): cycle fraction t = 0
+// is the R wave (end-diastole), then ejection, rapid filling, diastasis, atrial contraction.
+// Diastole, [s, 1] with s = systole_fraction, is divided in shares of its length D = 1 - s, as
+// physiology texts divide it in thirds (Guyton & Hall, Textbook of Medical Physiology, ch. 9:
+// rapid filling in the first third, little flow in the middle third (diastasis), the atria's
+// contraction in the last third adding about 20 % of the filling):
+inline constexpr Real kRapidFillingEnd = Real(0.4);  // rapid filling over [s, s + 0.4 D]
+inline constexpr Real kAtrialStart = Real(0.7);      // diastasis until s + 0.7 D
+inline constexpr Real kAtrialEnd = Real(0.92);       // atrial contraction until s + 0.92 D
+// Shares of the stroke volume refilled in each stage: rapid filling 75 %, diastasis 3 % (slow
+// inflow, nearly flat), the atrial kick the remaining 22 % (20-25 % in healthy adults).
+inline constexpr Real kRapidFillingShare = Real(0.75);
+inline constexpr Real kDiastasisShare = Real(0.03);
+inline constexpr Real kAtrialShare = 1 - kRapidFillingShare - kDiastasisShare;
+
+// Where each stage ends, as cycle fractions (at the defaults, s = 0.35: rapid filling to 0.61,
+// diastasis to 0.805, atrial contraction to 0.948; the static phase 0.7 is mid-diastasis).
+struct CardiacPhases {
+  Real end_systole = 0, end_rapid_filling = 0, atrial_start = 0, atrial_end = 0;
+};
+CardiacPhases cardiac_phases(const HeartParams& params);
+
 // The volume curve of the procedural heart as a fraction of end-diastolic volume, t in [0, 1):
-// cosine ejection to 1 - EF over the systole share, cosine filling back over the rest; C1.
+// a cosine fall to 1 - EF over [0, s] (ejection); cubic Hermite rise by 75 % of EF to the end of
+// rapid filling; linear by 3 % through diastasis; cubic Hermite by the remaining 22 % over the
+// atrial contraction; 1 until the next R wave. Each piece meets the next with the same value
+// and slope (C1, periodic), and the volume never falls in diastole.
 Real heart_volume_fraction(const HeartParams& params, Real t);
 
 // Periodic Catmull-Rom interpolation of the keyframes at cycle fraction t (any real t; C1 in t,

@@ -34,6 +34,7 @@ HeartField make_heart_field(const HeartModel& model, const HeartPlayback& playba
   interpolate_heart(model, playback.static_phase, h.reference);
   h.phase = playback.phase_at(0);
   interpolate_heart(model, h.phase, h.current);
+  h.previous = h.current;
   h.normals.resize(h.current.size());
   h.boxes.resize(model.topology.triangles.size());
   refresh_collider(h);
@@ -54,10 +55,14 @@ void add_heart_anchors(HeartField& h, TissueWorld& world, const std::vector<std:
                        const std::vector<std::uint32_t>& strand_sets) {
   const physics::Particles& P = world.state.particles;
   std::vector<std::uint32_t> particles;
+  std::size_t spare = 0;  // vertices cutting may add to these meshes, anchored as they come
   for (std::uint32_t m : meshes) {
-    for (std::uint32_t k = 0; k < world.meshes[m].particle_count; ++k) {
-      particles.push_back(world.meshes[m].first_particle + k);
-    }
+    const MeshObject& mesh = world.meshes[m];
+    for (std::uint32_t k = 0; k < mesh.particle_count; ++k)
+      particles.push_back(mesh.first_particle + k);
+    spare += mesh.particle_capacity > mesh.particle_count
+                 ? mesh.particle_capacity - mesh.particle_count
+                 : 0;
   }
   for (std::uint32_t s : strand_sets) {
     const StrandSet& set = world.strands[s];
@@ -72,6 +77,8 @@ void add_heart_anchors(HeartField& h, TissueWorld& world, const std::vector<std:
   const geometry::UniformGrid vertices(vertex_boxes, Real(0.01));
   std::vector<std::uint32_t> visited;
   std::uint32_t stamp = 0;
+  h.anchors.reserve(h.anchors.size() + particles.size() + spare);
+  h.anchor_of.resize(P.size(), HeartField::kNone);
   for (std::uint32_t i : particles) {
     // Nearest heart vertex: search growing boxes until one is found.
     std::uint32_t best = 0;
@@ -84,13 +91,42 @@ void add_heart_anchors(HeartField& h, TissueWorld& world, const std::vector<std:
                        if (d2 < best_d2 || (d2 == best_d2 && v < best)) best_d2 = d2, best = v;
                      });
     }
+    h.anchor_of[i] = static_cast<std::uint32_t>(h.anchors.size());
     h.anchors.push_back({i, best, std::exp(-std::sqrt(best_d2) / h.attenuation_length)});
   }
   if (world.reference.size() != P.size()) world.reference = P.rest_position;
 }
 
+void anchor_new_vertices(HeartField& h, TissueWorld& world, std::uint32_t mesh,
+                         std::uint32_t first_new_vertex, std::span<const NewVertex> vertices) {
+  physics::Particles& P = world.state.particles;
+  const std::uint32_t first = world.meshes[mesh].first_particle;
+  auto anchor_index = [&](std::uint32_t particle) {
+    return particle < h.anchor_of.size() ? h.anchor_of[particle] : HeartField::kNone;
+  };
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const NewVertex& nv = vertices[k];
+    const std::uint32_t i = first + first_new_vertex + static_cast<std::uint32_t>(k);
+    const std::uint32_t ka = anchor_index(first + nv.a), kb = anchor_index(first + nv.b);
+    if (ka == HeartField::kNone || kb == HeartField::kNone) continue;  // not an anchored mesh
+    const HeartField::Anchor a = h.anchors[ka], b = h.anchors[kb];
+    // The nearer parent's heart vertex (a fresh nearest search would cost set-up time); the
+    // weight as the position, so a copy (t = 0) moves exactly as its parent.
+    const std::uint32_t vertex = nv.t <= Real(0.5) ? a.heart_vertex : b.heart_vertex;
+    const Real weight = (1 - nv.t) * a.weight + nv.t * b.weight;
+    if (h.anchor_of.size() <= i) h.anchor_of.resize(P.size(), HeartField::kNone);
+    h.anchor_of[i] = static_cast<std::uint32_t>(h.anchors.size());
+    h.anchors.push_back({i, vertex, weight});
+    // Where the drive puts it now, as advance_heart does.
+    const Vec3 moved = P.rest_position[i] + weight * (h.current[vertex] - h.reference[vertex]);
+    if (world.reference.size() == P.size()) world.reference[i] = moved;
+    if (P.is_fixed(i)) P.position[i] = moved;
+  }
+}
+
 void advance_heart(HeartField& h, TissueWorld& world, double time_s) {
   h.phase = h.playback.phase_at(time_s);
+  h.previous = h.current;  // sized at set-up: no allocation
   interpolate_heart(h.model, h.phase, h.current);
   refresh_collider(h);
   physics::Particles& P = world.state.particles;
@@ -101,8 +137,6 @@ void advance_heart(HeartField& h, TissueWorld& world, double time_s) {
     if (P.is_fixed(a.particle)) P.position[a.particle] = moved;
   }
 }
-
-namespace {
 
 // Nearest point of each component of the heart's surface to p within `search`, the side of p
 // (signed distance, negative inside) and the surface normal there. The heart is a union of
@@ -138,8 +172,6 @@ void nearest_per_component(HeartField& h, const Vec3& p, Real search) {
   }
 }
 
-}  // namespace
-
 Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
   nearest_per_component(h, p, search);
   // Inside any component: as deep as the deepest; outside all: the distance to the nearest.
@@ -155,7 +187,7 @@ Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
 }
 
 std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
-                                 std::span<const Vec3> previous, Real min_search) {
+                                 std::span<const Vec3> previous, Real min_search, Real inside) {
   geometry::Box bounds;
   for (const Vec3& x : h.current)
     bounds.extend(x);
@@ -172,7 +204,7 @@ std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
       nearest_per_component(h, P.position[i], search);
       const HeartField::Nearest* deepest = nullptr;
       for (const HeartField::Nearest& n : h.nearest) {
-        if (n.triangle == HeartField::kNone || n.signed_distance >= h.margin) continue;
+        if (n.triangle == HeartField::kNone || n.signed_distance >= h.margin - inside) continue;
         if (deepest == nullptr || n.signed_distance < deepest->signed_distance) deepest = &n;
       }
       if (deepest == nullptr) break;

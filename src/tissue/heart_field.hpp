@@ -9,7 +9,8 @@
 //    p at set-up and d its distance. Kinematic anchors (inverse mass 0) are moved there; the
 //    offsets of the couplings (eq. 8-9) are taken from the reference, so the vessel, relaxing by
 //    0.8 a step, relaxes towards the moving reference. The maps are built once; nothing is
-//    searched for the drive while running. In static mode the displacement is zero.
+//    searched for the drive while running. A vertex a cut adds to an anchored mesh is anchored
+//    from its parents' anchors (anchor_new_vertices). In static mode the displacement is zero.
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -18,6 +19,7 @@
 #include "geometry/uniform_grid.hpp"
 #include "tissue/heart.hpp"
 #include "tissue/tissue_world.hpp"
+#include "tissue/topology_change.hpp"
 
 namespace imasim::tissue {
 
@@ -29,13 +31,15 @@ struct HeartField {
   Real phase = 0;                        // current cycle fraction
   std::vector<Vec3> reference;           // heart at the static phase
   std::vector<Vec3> current;             // heart now
+  std::vector<Vec3> previous;            // heart at the start of the step being taken
   std::vector<Vec3> normals;             // of `current`
   struct Anchor {
     std::uint32_t particle = 0, heart_vertex = 0;
     Real weight = 0;  // exp(-d / L)
   };
-  std::vector<Anchor> anchors;
-  std::uint32_t last_contacts = 0;  // particles put back on the surface by the last collide()
+  std::vector<Anchor> anchors;  // capacity reserved for the anchored meshes' spare vertices
+  std::vector<std::uint32_t> anchor_of;  // per particle: its index in `anchors`, or kNone
+  std::uint32_t last_contacts = 0;       // particles put back on the surface by the last collide()
   // Collider scratch, sized at set-up.
   std::vector<geometry::Box> boxes;
   geometry::UniformGrid grid;
@@ -65,6 +69,15 @@ void add_heart_anchors(HeartField& heart, TissueWorld& world,
                        const std::vector<std::uint32_t>& meshes,
                        const std::vector<std::uint32_t>& strand_sets);
 
+// After a topology change of world.meshes[mesh] that made `vertices` (new vertex k is mesh-local
+// first_new_vertex + k, its parents made before it): each new vertex whose parents are anchored
+// is anchored too, to the heart vertex of its nearer parent (a's for t <= 1/2) with the weight
+// (1 - t) w_a + t w_b (a copy: its parent's anchor), and put where that anchor drives it now
+// (reference; position too if kinematic). O(new vertices), no search; does not allocate while
+// the mesh's spare vertices last (reserved by add_heart_anchors). Call it right after the cut.
+void anchor_new_vertices(HeartField& heart, TissueWorld& world, std::uint32_t mesh,
+                         std::uint32_t first_new_vertex, std::span<const NewVertex> vertices);
+
 // Moves the heart to the cycle phase at `time_s` and the anchors with it.
 void advance_heart(HeartField& heart, TissueWorld& world, double time_s);
 
@@ -74,8 +87,16 @@ void advance_heart(HeartField& heart, TissueWorld& world, double time_s);
 // left inside after a step, so nothing can have got deeper than that. At set-up, where tissue may
 // start deep inside the heart, pass the current positions as `previous` and a larger search.
 inline constexpr Real kHeartStepSearch = Real(0.002);  // (unit: m)
+// `inside` is how far past the margin band a particle must be to count: 0 at set-up (keep the
+// margin), the margin itself after a step whose contacts keep it (only a particle actually inside
+// the surface was missed; the contact planes approximate the faceted surface within the band).
 std::uint32_t collide_with_heart(HeartField& heart, physics::Particles& particles,
-                                 std::span<const Vec3> previous, Real search = kHeartStepSearch);
+                                 std::span<const Vec3> previous, Real search = kHeartStepSearch,
+                                 Real inside = 0);
+
+// Fills heart.nearest: per component (LV, RV) the nearest surface point to p within `search`,
+// its triangle, interpolated normal and signed distance (triangle kNone where none is that near).
+void nearest_per_component(HeartField& heart, const Vec3& p, Real search);
 
 // Signed distance of p from the heart, the union of its closed surfaces, near p: inside any of
 // them, minus the depth in the one it is deepest in; outside all, the distance to the nearest;

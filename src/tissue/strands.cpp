@@ -1,10 +1,12 @@
 #include "tissue/strands.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "geometry/uniform_grid.hpp"
 #include "physics/constraint_system.hpp"
+#include "physics/mesh_constraints.hpp"
 #include "tissue/mesh_object.hpp"
 
 namespace imasim::tissue {
@@ -12,7 +14,7 @@ namespace imasim::tissue {
 namespace {
 
 physics::ObjectId add_object_for_strands(TissueWorld& world, const StrandSetParams& p) {
-  return add_object(world.model, p.name, p.gravity, p.linear_damping, 0);
+  return add_object(world, p.name, p.gravity, p.linear_damping, 0, p.coarse);
 }
 
 geometry::TriangleMesh current_mesh(const TissueWorld& w, const MeshObject& m) {
@@ -64,10 +66,12 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
     throw std::invalid_argument(p.name + ": strands need two different mesh objects");
   }
   if (!(p.diameter > 0) || !(p.total_mass > 0) || !(p.xsph_radius > 0) ||
+      !(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0) ||
       !(p.xsph_coefficient >= 0 && p.xsph_coefficient <= 1)) {
-    throw std::invalid_argument(p.name +
-                                ": diameter, total_mass and xsph_radius must be > 0, "
-                                "xsph_coefficient in [0, 1]");
+    throw std::invalid_argument(
+        p.name +
+        ": diameter, total_mass, youngs_modulus and xsph_radius must be > 0, "
+        "xsph_coefficient in [0, 1]");
   }
   const StrandGeneration gen =
       generate_strands(current_mesh(world, world.meshes[mesh_a]),
@@ -86,15 +90,23 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   const std::uint32_t n = set.segments;
   const Real interior_count = Real(std::max<std::size_t>(1, gen.strands.size() * (n - 1)));
   const Real particle_mass = p.total_mass / interior_count;
-  const physics::MaterialId material = world.model.add_material(p.material);
+  // Material compliance 1/E (unit: m^2/N); a segment's row scale L / A_s (unit: 1/m), so its
+  // compliance is L / (E A_s) (unit: m/N).
+  const physics::MaterialId material =
+      world.model.add_material(physics::ConstraintMaterial::xpbd(1 / p.youngs_modulus));
+  const MeshObject& source = world.meshes[mesh_a];
   for (const GeneratedStrand& g : gen.strands) {
+    const geometry::Triangle& face = source.triangles[g.face_a];
+    const Real cross_section = physics::rest_triangle_area(P, source.first_particle, face) /
+                               std::max(p.generation.strands_per_face, Real(1));
+    const Real segment_length = (g.end - g.start).norm() / Real(n);
     for (std::uint32_t k = 0; k <= n; ++k) {
       const Real t = Real(k) / Real(n);
       const std::uint32_t i = P.add((1 - t) * g.start + t * g.end, particle_mass, set.object);
       if (k == 0 || k == n) P.fix(i);  // ends ride on their surfaces
       if (k > 0) {
-        set.segment_constraint.push_back(
-            physics::add_distance(world.state.constraints, P, i - 1, i, material));
+        set.segment_constraint.push_back(physics::add_distance(
+            world.state.constraints, P, i - 1, i, material, segment_length / cross_section));
       }
       set.diameter.push_back(p.diameter);
     }
@@ -106,6 +118,7 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   build_neighbours(set, P);
   world.strands.push_back(std::move(set));
   world.xsph_scratch.resize(P.size());
+  world.xsph_weight.resize(P.size());
   return static_cast<std::uint32_t>(world.strands.size() - 1);
 }
 

@@ -15,8 +15,14 @@ struct StrandSetParams {
   Real diameter = Real(1.5e-3);  // drawn particle diameter (unit: m)
   Real total_mass = Real(0.02);  // spread over the interior particles (unit: kg)
   bool gravity = true;
-  Real linear_damping = Real(0.03);  // (unit: kg/s)
-  physics::ConstraintMaterial material = physics::ConstraintMaterial::xpbd(Real(1e-3));  // m/N
+  Real linear_damping = Real(0.03);  // k_l of eq. 4: share of velocity removed per 5 ms
+  // Soft (fat): stepped at the solver's coarse rate, which converges it (docs/physics.md).
+  bool coarse = true;
+  // Young's modulus of the connective tissue (unit: Pa): breast fat 3.25 +- 0.91 kPa (Samani et
+  // al. 2007, docs/tissue.md). Each strand stands for the tissue over its share of its source
+  // face, A_s = face area / sigma, so a segment of length L has k = E A_s / L: the layer's
+  // stiffness depends on neither sigma, n nor the mesh.
+  Real youngs_modulus = Real(3250);
   Real xsph_coefficient = Real(0.3);  // share of the neighbours' mean velocity taken per step
   Real xsph_radius = Real(4e-3);      // neighbourhood at rest (unit: m)
 };

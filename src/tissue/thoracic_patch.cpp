@@ -4,6 +4,15 @@
 
 namespace imasim::tissue {
 
+physics::SolverParams default_solver() {
+  physics::SolverParams s;
+  s.dt = Real(0.005);  // 2.3.1
+  s.substeps = 32;
+  s.iterations = 1;
+  s.coarse_stride = 4;  // the fat strands: 8 substeps
+  return s;
+}
+
 ThoracicPatchParams default_thoracic_patch_params() {
   ThoracicPatchParams p;
   // Chest wall: radius 120 mm about an axis along z at y = -0.12 m, so the wall passes through

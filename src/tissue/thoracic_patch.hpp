@@ -11,6 +11,9 @@
 
 namespace imasim::tissue {
 
+// The paper's 5 ms step, as substeps that converge the default tissues (docs/physics.md).
+physics::SolverParams default_solver();
+
 struct ThoracicPatchParams {
   geometry::CylinderPatchSpec wall;
   FasciaParams fascia;
@@ -18,7 +21,7 @@ struct ThoracicPatchParams {
   StrandSetParams ima_fat, fascia_fat;
   Real coupling_lambda_max = Real(0.01);  // eq. 8-9 (unit: m)
   Real coupling_radius = Real(0.003);     // strand particles this close are coupled (unit: m)
-  physics::SolverParams solver;           // 5 ms, 5 iterations (2.3.1)
+  physics::SolverParams solver = default_solver();
 };
 
 ThoracicPatchParams default_thoracic_patch_params();

@@ -1,6 +1,10 @@
 #include "tissue/tissue_step.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "geometry/vertex_normals.hpp"
+#include "physics/validation.hpp"
 #include "tissue/mesh_object.hpp"
 #include "tissue/strands.hpp"
 #include "tissue/xsph.hpp"
@@ -19,19 +23,42 @@ void update_surfaces(TissueWorld& world) {
 }
 
 void finish_setup(TissueWorld& world) {
+  // Every scene is checked once when it is made (MuJoCo's and Box2D's habit): a bad model or an
+  // inconsistent state is refused here, not found by the first step.
+  if (const std::string error = physics::validate_model(world.model); !error.empty()) {
+    throw std::invalid_argument("tissue world: " + error);
+  }
   physics::prepare_state(world.model, world.state);
+  if (const std::string error = physics::validate_state(world.model, world.state); !error.empty()) {
+    throw std::invalid_argument("tissue world: " + error);
+  }
   world.xsph_scratch.resize(world.state.particles.size());
+  world.xsph_weight.resize(world.state.particles.size());
   world.reference = world.state.particles.rest_position;
+  world.held.resize(world.state.particles.size(), 0);
+  // Contacts are gathered every step: room for two per particle, so stepping does not allocate.
+  world.state.contacts.rows.reserve(2 * world.state.particles.size());
+  std::size_t pairs = 0;
+  for (const OffsetCoupling& c : world.couplings)
+    pairs += c.pairs.size();
+  world.state.follows.reserve(pairs);
   update_surfaces(world);
   place_strand_ends(world);
 }
 
 physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& exec) {
+  // Active couplings (eq. 8, eq. 9 with beta = 1) act inside the solve.
+  world.state.follows.clear();
+  for (const OffsetCoupling& c : world.couplings)
+    append_follow_rows(c, world.reference, world.held, world.state.follows);
   const physics::StepResult r = physics::step(world.model, world.state, exec);
   if (!r.ok()) return r;
   smooth_strand_velocities(world);
+  // eq. 9 with beta = 0: the decay after the step, with the velocity made to agree.
   for (const OffsetCoupling& c : world.couplings) {
-    apply_coupling(c, world.state.particles, world.reference);
+    if (c.active) continue;
+    apply_coupling(c, world.state.particles, world.reference, world.state.scratch.saved_position,
+                   world.model.solver.dt, world.held);
   }
   return r;
 }

@@ -10,6 +10,7 @@
 #include "geometry/edge_adjacency.hpp"
 #include "geometry/surface_binding.hpp"
 #include "geometry/triangle_mesh.hpp"
+#include "physics/mesh_constraints.hpp"
 #include "physics/model.hpp"
 #include "physics/state.hpp"
 #include "tissue/coupling.hpp"
@@ -43,6 +44,8 @@ struct MeshObject {
   std::uint32_t particle_capacity = 0;
   Real total_mass = 0;  // M_total of eq. 5 (unit: kg)
   physics::MaterialId stretch_material = 0, bend_material = 0;
+  // Whether rows scale the materials' compliance by their rest geometry (a membrane).
+  physics::CompliancePerRow per_row = physics::CompliancePerRow::material;
   std::unordered_map<std::uint64_t, EdgeRecord> edges;
 };
 
@@ -94,6 +97,10 @@ struct TissueWorld {
   // boundary conditions such as the heart's drive (heart_field.hpp).
   std::vector<Vec3> reference;
   std::vector<Vec3> xsph_scratch;  // velocities being smoothed, sized at set-up
+  std::vector<Real> xsph_weight;   // sum_j W_ij per particle while smoothing, sized at set-up
+  // Per particle: held by an instrument (grasped). Held particles follow the jaws through their
+  // attachments, not the couplings (eq. 8-9), so a grasp is not undone every step.
+  std::vector<std::uint8_t> held;
 };
 
 }  // namespace imasim::tissue

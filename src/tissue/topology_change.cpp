@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include "geometry/vertex_normals.hpp"
+#include "math/validation_assert.hpp"
+#include "physics/membrane_material.hpp"
+#include "physics/mesh_constraints.hpp"
 #include "physics/validation.hpp"
 #include "tissue/mesh_object.hpp"
 
@@ -235,6 +238,7 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
   for (std::uint64_t key : touched) {
     const auto it = m.edges.find(key);
     if (it == m.edges.end()) continue;
+    IMASIM_ASSERT(cs.distance.resolves(it->second.distance));  // every edge has its row
     if (cs.distance.remove(it->second.distance))
       change.distance_removed.push_back(it->second.distance);
     if (cs.dihedral.remove(it->second.dihedral))
@@ -246,6 +250,7 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
   // New particles, interpolated from their parents.
   for (std::uint32_t k = 0; k < edit.vertices.size(); ++k) {
     const NewVertex& nv = edit.vertices[k];
+    IMASIM_ASSERT(nv.a < n_old + k && nv.b < n_old + k && nv.t >= 0 && nv.t <= 1);
     const std::uint32_t a = first + nv.a, b = first + nv.b, i = first + n_old + k;
     const Real s = 1 - nv.t, t = nv.t;
     P.position[i] = s * P.position[a] + t * P.position[b];
@@ -301,13 +306,22 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
     const Triangle& f0 = m.triangles[r.faces[0]];
     auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
     if (!runs_from(f0, a, b)) std::swap(a, b);  // f0 runs a -> b: its wing is p0 (eq. 3)
-    r.distance = physics::add_distance(cs, P, first + a, first + b, m.stretch_material);
+    // Membrane rows take their compliance scale from the new rest geometry.
+    const bool membrane = m.per_row == physics::CompliancePerRow::membrane;
+    const Real length2 = (P.rest_position[first + a] - P.rest_position[first + b]).squaredNorm();
+    Real area = physics::rest_triangle_area(P, first, f0);
+    if (r.faces[1] != kNoFace)
+      area += physics::rest_triangle_area(P, first, m.triangles[r.faces[1]]);
+    r.distance = physics::add_distance(
+        cs, P, first + a, first + b, m.stretch_material,
+        membrane ? physics::stretch_compliance_scale(length2, area) : Real(1));
     change.distance_added.push_back(r.distance);
     if (r.faces[1] != kNoFace) {
       const Triangle& f1 = m.triangles[r.faces[1]];
-      r.dihedral = physics::add_dihedral(cs, P, first + opposite_vertex(f0, a, b),
-                                         first + opposite_vertex(f1, a, b), first + a, first + b,
-                                         m.bend_material);
+      r.dihedral = physics::add_dihedral(
+          cs, P, first + opposite_vertex(f0, a, b), first + opposite_vertex(f1, a, b), first + a,
+          first + b, m.bend_material,
+          membrane ? physics::bend_compliance_scale(length2, area) : Real(1));
       change.dihedral_added.push_back(r.dihedral);
     }
   }

@@ -14,6 +14,7 @@ struct VesselParams {
   MeshObjectParams object;
 };
 VesselParams default_vessel_params();
+physics::MembraneMaterial default_vessel_wall();
 
 struct VesselIndices {
   std::uint32_t mesh = 0;    // coarse, simulated (world.meshes)

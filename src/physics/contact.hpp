@@ -1,0 +1,69 @@
+#pragma once
+// Contacts inside the solve (SPEC S1): a dynamic particle against a kinematic surface that moves
+// during the step (the heart's wall, the chest wall, an instrument). Candidates are gathered once
+// per step by whoever owns the surface (tissue/heart_contact.hpp, surgery/tool_contact.hpp): each
+// is the surface's tangent plane near the particle, at its point on the surface at the step's
+// start (point0) and end (point1), so the plane moves with the surface's own velocity there. In
+// every substep, after the constraint sweeps of each iteration, the particle is kept on the
+// plane's outer side plus a margin (a hard XPBD inequality against an infinitely heavy surface),
+// with Coulomb friction in positional form (Mueller et al. 2020) against the surface's motion
+// in that substep: the slip is removed while it is below mu_s times the normal correction, else
+// reduced by mu_k times it. A contact of a coarse object (ObjectParams::coarse) is projected in
+// that object's substeps only.
+#include <cstdint>
+#include <vector>
+
+#include "math/types.hpp"
+
+namespace imasim::physics {
+
+struct ContactRow {
+  std::uint32_t particle = 0;
+  std::uint32_t tag = 0;  // the caller's: which surface (for reports and events)
+  Vec3 point0 = Vec3::Zero(), point1 = Vec3::Zero();  // surface point, step start / end (unit: m)
+  Vec3 normal = Vec3::Zero();  // outward unit normal: the particle stays on its + side
+  Real margin = 0;             // kept between surface and particle (unit: m)
+  Real static_friction = 0, kinetic_friction = 0;  // mu_s, mu_k
+  // Results of the step: the deepest penetration corrected in its last substep and the normal
+  // impulse over the step (sum of m dn / h; / dt gives the mean force).
+  Real depth = 0;           // (unit: m)
+  Real normal_impulse = 0;  // (unit: N s)
+};
+
+struct ContactSet {
+  std::vector<ContactRow> rows;  // gathered for the next step, in a fixed order (determinism)
+
+  void clear() { rows.clear(); }
+  // Rows of one caller (tag range [first_tag, end_tag)): count of those in touch at the step's
+  // end, the deepest one (or null).
+  std::size_t touching(std::uint32_t first_tag, std::uint32_t end_tag) const;
+};
+
+// One projection (see above). x_start: positions at the substep's start; tau0, tau1: the
+// substep's start and end as fractions of the step; h: the substep's length (unit: s).
+inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const Real* w, Real tau0,
+                            Real tau1, Real h) {
+  const Real wi = w[c.particle];
+  if (wi == 0) return;
+  Vec3& x = p[c.particle];
+  const Vec3 motion = c.point1 - c.point0;
+  const Vec3 q = c.point0 + tau1 * motion;
+  const Real gap = c.normal.dot(x - q) - c.margin;
+  if (!(gap < 0)) return;
+  const Real dn = -gap;  // the normal correction (hard contact: all of it)
+  x += dn * c.normal;
+  c.depth = dn > c.depth ? dn : c.depth;
+  c.normal_impulse += dn / (wi * h);
+  // Slip relative to the surface over this substep, tangential part.
+  const Vec3 slip = (x - x_start[c.particle]) - (tau1 - tau0) * motion;
+  const Vec3 slip_t = slip - slip.dot(c.normal) * c.normal;
+  const Real s = slip_t.norm();
+  if (s < c.static_friction * dn) {
+    x -= slip_t;  // static: it moves with the surface
+  } else if (s > 0) {
+    const Real reduce = c.kinetic_friction * dn / s;
+    x -= (reduce < 1 ? reduce : Real(1)) * slip_t;
+  }
+}
+
+}  // namespace imasim::physics

@@ -1,0 +1,64 @@
+#include "tissue/surface_contacts.hpp"
+
+#include "geometry/closest_point.hpp"
+
+namespace imasim::tissue {
+
+void gather_heart_contacts(HeartField& h, const physics::Particles& P, Real dt,
+                           const SurfaceContactParams& params, physics::ContactSet& out) {
+  geometry::Box bounds;
+  for (std::size_t v = 0; v < h.current.size(); ++v) {
+    bounds.extend(h.current[v]);
+    bounds.extend(h.previous[v]);
+  }
+  const auto& tris = h.model.topology.triangles;
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    if (P.inverse_mass[k] == 0) continue;
+    const Vec3 probe = P.position[k] + dt * P.velocity[k];
+    const Real search = params.search + h.margin + dt * P.velocity[k].norm();
+    if (bounds.exteriorDistance(probe) > search) continue;
+    nearest_per_component(h, probe, search);
+    for (const HeartField::Nearest& n : h.nearest) {
+      if (n.triangle == HeartField::kNone || n.signed_distance > search) continue;
+      const auto& t = tris[n.triangle];
+      const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
+          probe, h.current[t[0]], h.current[t[1]], h.current[t[2]]);
+      physics::ContactRow c;
+      c.particle = static_cast<std::uint32_t>(k);
+      c.tag = kHeartContact;
+      c.point1 = q.point;
+      c.point0 = q.bary[0] * h.previous[t[0]] + q.bary[1] * h.previous[t[1]] +
+                 q.bary[2] * h.previous[t[2]];
+      c.normal = n.normal;
+      c.margin = h.margin;
+      c.static_friction = params.heart_static_friction;
+      c.kinetic_friction = params.heart_kinetic_friction;
+      out.rows.push_back(c);
+    }
+  }
+}
+
+void gather_wall_contacts(const geometry::CylinderPatchSpec& wall, const physics::Particles& P,
+                          Real dt, const SurfaceContactParams& params, physics::ContactSet& out) {
+  const Vec3 axis = wall.axis.normalized();
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    if (P.inverse_mass[k] == 0) continue;
+    const Vec3 probe = P.position[k] + dt * P.velocity[k];
+    const Vec3 r = probe - wall.origin;
+    const Vec3 radial = r - r.dot(axis) * axis;
+    const Real distance = radial.norm();
+    const Real search = params.search + dt * P.velocity[k].norm();
+    if (distance < wall.radius - search || !(distance > 0)) continue;
+    const Vec3 outward = radial / distance;
+    physics::ContactRow c;
+    c.particle = static_cast<std::uint32_t>(k);
+    c.tag = kWallContact;
+    c.point0 = c.point1 = wall.origin + r.dot(axis) * axis + wall.radius * outward;
+    c.normal = -outward;  // the cavity's side
+    c.static_friction = params.wall_static_friction;
+    c.kinetic_friction = params.wall_kinetic_friction;
+    out.rows.push_back(c);
+  }
+}
+
+}  // namespace imasim::tissue

@@ -1,0 +1,41 @@
+#pragma once
+// Contacts of the tissue with the heart and the chest wall, gathered once per step for the solver
+// (physics/contact.hpp), so that they are constraints inside every substep rather than a
+// correction after it (SPEC S1).
+//  - Heart: for each dynamic particle whose predicted position x + v dt comes within `search` of
+//    a ventricle (LV, RV: the heart is their union), one plane per ventricle at the nearest point
+//    of its surface at the step's end, with the interpolated normal; point0 is the same
+//    barycentric point on the heart at the step's start, so the plane moves with the wall's own
+//    velocity (friction acts on the relative motion).
+//  - Chest wall: the cavity's cylinder (the wall's inner surface) from inside: particles within
+//    `search` of it get the tangent plane, normal towards the axis; the wall does not move.
+#include <cstdint>
+
+#include "geometry/tube.hpp"
+#include "physics/contact.hpp"
+#include "physics/particles.hpp"
+#include "tissue/heart_field.hpp"
+
+namespace imasim::tissue {
+
+// Tags of the surfaces' contact rows.
+inline constexpr std::uint32_t kHeartContact = 1, kWallContact = 2;
+
+struct SurfaceContactParams {
+  Real search = Real(0.002);  // beyond the predicted motion (unit: m)
+  // The epicardium and the pleura are wet serous surfaces: low friction (ours).
+  Real heart_static_friction = Real(0.1), heart_kinetic_friction = Real(0.05);
+  Real wall_static_friction = Real(0.3), wall_kinetic_friction = Real(0.2);
+};
+
+// Appends the heart's contacts (margin: heart.margin); heart.previous and heart.current are the
+// step's start and end shapes (advance_heart). dt: the step (unit: s).
+void gather_heart_contacts(HeartField& heart, const physics::Particles& particles, Real dt,
+                           const SurfaceContactParams& params, physics::ContactSet& out);
+
+// Appends the chest wall's contacts (margin 0).
+void gather_wall_contacts(const geometry::CylinderPatchSpec& wall,
+                          const physics::Particles& particles, Real dt,
+                          const SurfaceContactParams& params, physics::ContactSet& out);
+
+}  // namespace imasim::tissue

@@ -1,0 +1,86 @@
+// Contacts inside the solve (physics/contact.hpp): a particle on a moving surface.
+#include <gtest/gtest.h>
+
+#include "physics/executor.hpp"
+#include "physics/step.hpp"
+
+namespace imasim::physics {
+namespace {
+
+struct Slab {
+  Model model;
+  State state;
+};
+
+// A 1 g particle resting on the plane y = 0 (gravity -y presses it on); the plane slides along x
+// at `speed` during the step (point0 -> point1), with friction mu_s, mu_k.
+Slab particle_on_a_sliding_plane(Real speed, Real mu_s, Real mu_k, std::uint32_t substeps) {
+  Slab s;
+  s.model.objects.push_back(ObjectParams{});
+  s.model.solver.substeps = substeps;
+  s.model.solver.iterations = 1;
+  s.state.particles.add(Vec3::Zero(), 0.001, 0);
+  ContactRow c;
+  c.particle = 0;
+  c.point0 = Vec3::Zero();
+  c.point1 = Vec3(speed * s.model.solver.dt, 0, 0);
+  c.normal = Vec3::UnitY();
+  c.static_friction = mu_s;
+  c.kinetic_friction = mu_k;
+  s.state.contacts.rows.push_back(c);
+  return s;
+}
+
+// Static friction carries the particle with the moving surface: within one step (the needed
+// acceleration, 2 m/s^2, is below mu_s g) its velocity becomes the surface's, relative velocity
+// zero, not zero as a world-frame rule would leave it.
+TEST(Contact, StaticFrictionCarriesTheParticleWithTheMovingSurface) {
+  Slab s = particle_on_a_sliding_plane(0.01, 1.0, 0.8, 1);
+  Executor exec(1);
+  ASSERT_TRUE(step(s.model, s.state, exec).ok());
+  EXPECT_NEAR(s.state.particles.position[0].x(), 0.01 * 0.005, 1e-12);
+  EXPECT_NEAR(s.state.particles.velocity[0].x(), 0.01, 1e-9);
+  EXPECT_NEAR(s.state.particles.position[0].y(), 0, 1e-15);  // held on the surface
+  EXPECT_GT(s.state.contacts.rows[0].depth, 0);
+  // The normal impulse over the step carries the weight: m g dt.
+  EXPECT_NEAR(s.state.contacts.rows[0].normal_impulse, 0.001 * 9.81 * 0.005, 1e-9);
+}
+
+// With 8 substeps the surface's jump per substep needs more than mu_s g: the particle slips at
+// first (kinetic), then sticks and moves with the surface; the contact is re-gathered each step
+// as its owner does, the plane advancing with the surface.
+TEST(Contact, FrictionBringsTheParticleToTheSurfacesVelocityAcrossSubsteps) {
+  Slab s = particle_on_a_sliding_plane(0.01, 1.0, 0.8, 8);
+  Executor exec(1);
+  for (int n = 0; n < 10; ++n) {
+    ContactRow& c = s.state.contacts.rows[0];
+    c.point0 = Vec3(0.01 * 0.005 * n, 0, 0);
+    c.point1 = Vec3(0.01 * 0.005 * (n + 1), 0, 0);
+    ASSERT_TRUE(step(s.model, s.state, exec).ok());
+  }
+  EXPECT_NEAR(s.state.particles.velocity[0].x(), 0.01, 1e-9);
+  EXPECT_NEAR(s.state.particles.position[0].y(), 0, 1e-15);
+}
+
+// Without friction the surface slides under the particle, which stays where it was.
+TEST(Contact, AFrictionlessSurfaceSlidesUnderTheParticle) {
+  Slab s = particle_on_a_sliding_plane(0.01, 0, 0, 4);
+  Executor exec(1);
+  ASSERT_TRUE(step(s.model, s.state, exec).ok());
+  EXPECT_NEAR(s.state.particles.position[0].x(), 0, 1e-15);
+  EXPECT_NEAR(s.state.particles.velocity[0].x(), 0, 1e-12);
+}
+
+// Kinetic friction: the slip exceeds mu_s times the normal correction, and is reduced by mu_k
+// times it each substep, the Coulomb bound mu_k g per unit mass on the acceleration.
+TEST(Contact, KineticFrictionAcceleratesByAtMostMuKG) {
+  const Real mu_k = 0.2;
+  Slab s = particle_on_a_sliding_plane(1.0, 0.25, mu_k, 1);
+  Executor exec(1);
+  ASSERT_TRUE(step(s.model, s.state, exec).ok());
+  // One substep of 5 ms: normal correction g h^2, slip reduced by mu_k g h^2.
+  EXPECT_NEAR(s.state.particles.velocity[0].x(), mu_k * 9.81 * 0.005, 1e-9);
+}
+
+}  // namespace
+}  // namespace imasim::physics

@@ -1,0 +1,103 @@
+// The physics means its parameters (SPEC S1): the resting state is set by the materials, not by
+// the solver settings or the mesh. Slow (seconds of simulated time at fine solves): Release only,
+// label `physics`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "physics/executor.hpp"
+#include "scene/thorax_scene.hpp"
+#include "surgery/cautery.hpp"
+#include "tissue/mesh_object.hpp"
+#include "tissue/tissue_step.hpp"
+
+namespace imasim {
+namespace {
+
+using physics::kinetic_energy;
+using tissue::max_displacement;
+
+struct Rest {
+  double fascia = 0, vessel = 0, energy = 0;
+};
+
+// The default thorax scene with a static heart after `seconds`, at `substeps` per step.
+Rest rest_of_default_scene(std::uint32_t substeps, double seconds) {
+  scene::ThoraxSceneParams p = scene::default_thorax_scene_params();
+  p.playback.beating = false;
+  p.patch.solver.substeps = substeps;
+  scene::ThoraxScene s = scene::make_thorax_scene(p);
+  physics::Executor exec(2);
+  tissue::TissueWorld& w = s.patch.world;
+  while (w.state.time < seconds) {
+    const physics::StepResult r = scene::step_thorax_scene(s, exec);
+    EXPECT_TRUE(r.ok());
+    if (!r.ok()) break;
+  }
+  return {max_displacement(w, w.meshes[s.patch.fascia]), max_displacement(w, w.meshes[s.patch.ima]),
+          kinetic_energy(w.state.particles)};
+}
+
+// The coupled default scene (fascia, vessel, fat, wall, static heart) comes to rest, and where
+// it rests is within 5 % of a 4x finer solve (the vessel, unloaded, within 0.1 mm).
+TEST(Convergence, DefaultSceneRestsWithinFivePercentOfAFourTimesFinerSolve) {
+  const std::uint32_t n = scene::default_thorax_scene_params().patch.solver.substeps;
+  const Rest coarse = rest_of_default_scene(n, 2.5);
+  const Rest fine = rest_of_default_scene(4 * n, 2.5);
+  EXPECT_GT(fine.fascia, 0.5e-3);  // gravity sags it visibly: the comparison means something
+  EXPECT_NEAR(coarse.fascia, fine.fascia, 0.05 * fine.fascia);
+  EXPECT_NEAR(coarse.vessel, fine.vessel, 1e-4);
+  EXPECT_LT(coarse.energy, 1e-9);  // at rest (J)
+}
+
+// A fascia alone (perimeter fixed, gravity), as the thoracic patch makes it, at rest.
+double fascia_sag(std::uint32_t nx, std::uint32_t ny, Real youngs_modulus, std::uint32_t substeps,
+                  bool coagulate = false) {
+  tissue::TissueWorld w;
+  w.model.solver = tissue::default_solver();
+  w.model.solver.substeps = substeps;
+  tissue::FasciaParams f = tissue::default_fascia_params();
+  f.nx = nx, f.ny = ny;
+  f.object.membrane->youngs_modulus = youngs_modulus;
+  const std::uint32_t mesh = tissue::add_fascia(w, f);
+  tissue::finish_setup(w);
+  if (coagulate) {
+    surgery::CauteryState cautery = surgery::make_cautery_state(
+        w, surgery::CauteryParams{}, {w.meshes[mesh].object}, physics::ObjectId(0xffff));
+    std::fill(cautery.coagulated.begin(), cautery.coagulated.end(), std::uint8_t(1));
+    cautery.coagulated_count = cautery.coagulated.size();
+    surgery::stiffen_coagulated(w, cautery);
+  }
+  physics::Executor exec(2);
+  for (int k = 0; k < 300; ++k)
+    EXPECT_TRUE(tissue::step_tissue(w, exec).ok());
+  EXPECT_LT(kinetic_energy(w.state.particles), 1e-9);
+  return max_displacement(w, w.meshes[mesh]);
+}
+
+// The same fascia on a 1.9x finer mesh (2.1 mm instead of 3.9 mm cells) rests within 5 %: the
+// per-edge compliances come from E t and the rest geometry (physics/membrane_material.hpp).
+TEST(Convergence, FasciaRestsWithinFivePercentAtTwoMeshResolutions) {
+  const Real e = tissue::default_fascia_membrane().youngs_modulus;
+  const double coarse = fascia_sag(12, 40, e, 96);
+  const double fine = fascia_sag(21, 75, e, 192);
+  EXPECT_GT(coarse, 0.5e-3);
+  EXPECT_NEAR(coarse, fine, 0.05 * fine);
+}
+
+// A membrane fixed at its edges sags under its weight as (load / E t)^(1/3): ten times stiffer
+// sags 10^(1/3) = 2.15 times less. Coagulation (stretch compliance x 0.1 on the coagulated
+// particles' edges, through the cautery's own path) is that stiffening of the stretch alone:
+// the sag drops by nearly the same factor (bending, untouched, adds a little).
+TEST(Convergence, TenTimesStifferFasciaSagsTenToTheThirdLess) {
+  const Real e = tissue::default_fascia_membrane().youngs_modulus;
+  const double soft = fascia_sag(12, 40, e, 128);
+  const double stiff = fascia_sag(12, 40, 10 * e, 128);
+  const double coagulated = fascia_sag(12, 40, e, 128, true);
+  EXPECT_NEAR(soft / stiff, std::cbrt(10.0), 0.15);
+  EXPECT_GT(soft / coagulated, 1.8);
+  EXPECT_LT(coagulated, 1.1 * stiff);
+}
+
+}  // namespace
+}  // namespace imasim
