@@ -28,7 +28,10 @@ layer-check:
 	bash scripts/check-layers.sh
 
 # Release build with -Werror and every ctest, then the unit tests again under ASan+UBSan
-# with the expensive invariant checks (IMASIM_VALIDATION) switched on.
+# with the expensive invariant checks (IMASIM_VALIDATION) switched on. The longest full-length
+# scene runs (seconds of a converged solve, 1-2 minutes each under ASan) run in Release only;
+# shorter runs of the same code stay in the ASan set.
+ASAN_SKIP = TheExampleScriptOpensGraspsCutsAndCoagulates|SameHashAcrossRunsAndThreadCounts|AScriptedSessionIsBitForBitRepeatableWhateverTheThreads|NoTissueParticleInsideTheHeartAfterSecondsOfBeating
 test: format-check layer-check build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	$(MAKE) unit-asan
@@ -37,7 +40,7 @@ unit-asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMASIM_WERROR=ON \
 	  -DIMASIM_SANITIZE=ON -DIMASIM_VALIDATION=ON -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target imasim_unit_tests
-	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L unit
+	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L unit -E '$(ASAN_SKIP)'
 
 format:
 	bash scripts/check-format.sh --fix

@@ -96,6 +96,30 @@ TEST(RunCommand, StaticHeartAndClearErrors) {
   EXPECT_NE(bad.output.find("--heart-rate"), std::string::npos);
 }
 
+// --substeps and --iterations override the scene's solver, and the report says where the tissue
+// rests: the unconverged 1 x 5 solve sags the fascia far more than the default.
+TEST(RunCommand, SolverOverridesAndRestingDisplacements) {
+  const auto fine = nlohmann::json::parse(
+      run_imasim("run --headless --static --seconds 0.5 --threads 1 --json").output);
+  EXPECT_EQ(fine["substeps"], 32);
+  EXPECT_EQ(fine["iterations"], 1);
+  const auto coarse = nlohmann::json::parse(
+      run_imasim("run --headless --static --seconds 0.5 --substeps 1 --iterations 5 --threads 1 "
+                 "--json")
+          .output);
+  EXPECT_EQ(coarse["substeps"], 1);
+  EXPECT_EQ(coarse["iterations"], 5);
+  EXPECT_GT(fine["fascia_max_displacement_m"].get<double>(), 1e-4);
+  EXPECT_GT(coarse["fascia_max_displacement_m"].get<double>(),
+            1.5 * fine["fascia_max_displacement_m"].get<double>());
+  EXPECT_LT(fine["vessel_max_displacement_m"].get<double>(), 1e-9);  // unloaded, static heart
+  EXPECT_GE(fine["kinetic_energy_j"].get<double>(), 0);
+  EXPECT_EQ(fine["missed_heart_contacts"], 0);
+  const Outcome bad = run_imasim("run --headless --substeps 0");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.output.find("--substeps"), std::string::npos);
+}
+
 TEST(RunCommand, PatientSeedGivesAnotherReproduciblePatient) {
   const std::string args = "run --headless --seconds 0.1 --threads 1 --json";
   const auto typical = nlohmann::json::parse(run_imasim(args).output);

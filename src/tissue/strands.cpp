@@ -119,6 +119,8 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   world.strands.push_back(std::move(set));
   world.xsph_scratch.resize(P.size());
   world.xsph_weight.resize(P.size());
+  const std::size_t neighbour_entries = world.strands.back().neighbours.size();
+  if (world.xsph_kernel.size() < neighbour_entries) world.xsph_kernel.resize(neighbour_entries);
   return static_cast<std::uint32_t>(world.strands.size() - 1);
 }
 

@@ -97,6 +97,7 @@ struct TissueWorld {
   // boundary conditions such as the heart's drive (heart_field.hpp).
   std::vector<Vec3> reference;
   std::vector<Vec3> xsph_scratch;  // velocities being smoothed, sized at set-up
+  std::vector<Real> xsph_kernel;   // W_ij per neighbour entry while smoothing, sized at set-up
   std::vector<Real> xsph_weight;   // sum_j W_ij per particle while smoothing, sized at set-up
   // Per particle: held by an instrument (grasped). Held particles follow the jaws through their
   // attachments, not the couplings (eq. 8-9), so a grasp is not undone every step.
