@@ -12,10 +12,10 @@
 
 namespace imasim::physics {
 
-// The particles of one object lie in [first, end) (with others' possibly interleaved); its
-// dynamic ones (inverse mass > 0) in [dynamic_first, dynamic_end), refreshed every step.
+// An object's dynamic particles (inverse mass > 0) lie in [dynamic_first, dynamic_end), with
+// others' possibly interleaved; found at the start of every step (step.cpp), so cuts that make
+// spare particles dynamic are seen. dynamic_end == 0: none.
 struct ObjectRange {
-  std::uint32_t first = 0, end = 0;
   std::uint32_t dynamic_first = 0, dynamic_end = 0;
 };
 
@@ -27,7 +27,6 @@ struct StepScratch {
   std::vector<ProjectionTerms> coarse_terms;      // per material, for a coarse substep
   std::vector<Real> object_keep;                  // per object: linear damping factor per substep
   std::vector<ObjectRange> object_ranges;         // per object, for per-object passes
-  std::size_t ranged_particles = 0;               // particle count object_ranges was built for
   std::vector<std::uint32_t> block_first_bad;     // per particle chunk: first diverging particle
   std::vector<std::uint32_t> validation_stamp;    // per particle, for invariant checks
 };
