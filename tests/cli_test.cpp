@@ -115,6 +115,16 @@ TEST(RunCommand, SolverOverridesAndRestingDisplacements) {
   EXPECT_LT(fine["vessel_max_displacement_m"].get<double>(), 1e-9);  // unloaded, static heart
   EXPECT_GE(fine["kinetic_energy_j"].get<double>(), 0);
   EXPECT_EQ(fine["missed_heart_contacts"], 0);
+  // Where the time went: per-stage means that add up to the total; a scene without instruments
+  // spends none on them, and 32 substeps spend more in the solve than 1 x 5 does.
+  const auto& profile = fine["profile_ms_per_step"];
+  double sum = 0;
+  for (const char* stage : {"instruments", "cutting", "heart", "contacts", "predict", "solve",
+                            "velocities", "coupling", "surfaces"})
+    sum += profile[stage].get<double>();
+  EXPECT_NEAR(profile["total"].get<double>(), sum, 1e-9);
+  EXPECT_EQ(profile["instruments"].get<double>(), 0.0);
+  EXPECT_GT(profile["solve"].get<double>(), coarse["profile_ms_per_step"]["solve"].get<double>());
   const Outcome bad = run_imasim("run --headless --substeps 0");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.output.find("--substeps"), std::string::npos);

@@ -230,6 +230,7 @@ TEST(ToolContact, BroadPhaseKeepsTheMargin) {
   std::vector<ToolContact> contacts;
   const ContactSummary s = resolve_tool_contacts(P, start, Shaft(), params, 0.01, contacts);
   EXPECT_EQ(s.count, 6u);
+  EXPECT_EQ(s.inside, 0u);  // in the margin band only: not a missed contact
   EXPECT_NEAR(s.max_depth, params.margin / 2, 1e-15);
   // A turned box's bounding box covers its turned extent: a point inside near its tip.
   ToolGeometry turned;
@@ -240,7 +241,9 @@ TEST(ToolContact, BroadPhaseKeepsTheMargin) {
   physics::Particles Q;
   Q.add(box.pose.apply(Vec3(0.009, 0.0005, 0)), 0.001, 0);
   const std::vector<Vec3> start_q = Q.position;
-  EXPECT_EQ(resolve_tool_contacts(Q, start_q, turned, params, 0.01, contacts).count, 1u);
+  const ContactSummary q = resolve_tool_contacts(Q, start_q, turned, params, 0.01, contacts);
+  EXPECT_EQ(q.count, 1u);
+  EXPECT_EQ(q.inside, 1u);  // inside the box itself
   EXPECT_NEAR((Q.position[0] - box.pose.apply(Vec3(0.009, 0.001 + params.margin, 0))).norm(), 0,
               1e-15);
 }

@@ -24,6 +24,18 @@ void add_status(nlohmann::ordered_json& out, bool positions_finite,
   }
 }
 
+nlohmann::ordered_json profile_report(const physics::ProfileTotals& totals) {
+  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
+  double sum = 0;
+  for (std::size_t k = 0; k < physics::kStageCount; ++k) {
+    const auto stage = static_cast<physics::Stage>(k);
+    stages[physics::to_string(stage)] = 1e3 * totals.mean(stage);
+    sum += 1e3 * totals.mean(stage);
+  }
+  stages["total"] = sum;
+  return stages;
+}
+
 void print_report(const nlohmann::ordered_json& out, bool json) {
   if (json) {
     std::cout << out.dump() << '\n';

@@ -15,6 +15,9 @@ double median(std::vector<double>& values);
 void add_status(nlohmann::ordered_json& out, bool positions_finite,
                 const physics::StepResult& failure, std::uint64_t steps_done);
 
+// Mean milliseconds per step in each stage, and their sum, over the steps of `totals`.
+nlohmann::ordered_json profile_report(const physics::ProfileTotals& totals);
+
 void print_report(const nlohmann::ordered_json& out, bool json);
 
 }  // namespace imasim::cli

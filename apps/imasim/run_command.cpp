@@ -121,6 +121,7 @@ int run_run_command(const RunOptions& o) {
   double ima_motion = 0;
   std::uint32_t max_contacts = 0;
   std::uint64_t missed_heart_contacts = 0;
+  physics::ProfileTotals profile;
   std::uint64_t done = 0;
   for (; done < steps; ++done) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -134,6 +135,7 @@ int run_run_command(const RunOptions& o) {
       failure = r;
       break;
     }
+    profile.add(r.profile);
     max_contacts = std::max(max_contacts, scene.heart.last_contacts);
     missed_heart_contacts += scene.missed_heart_contacts;
     for (std::uint32_t k = 0; k < ima.particle_count; ++k) {
@@ -171,6 +173,7 @@ int run_run_command(const RunOptions& o) {
   out["heart_contacts_max"] = max_contacts;
   out["missed_heart_contacts"] = missed_heart_contacts;  // a warning: should stay 0
   out["ms_per_step_median"] = median_ms;
+  out["profile_ms_per_step"] = profile_report(profile);  // mean per stage
   out["substeps"] = w.model.solver.substeps;
   out["iterations"] = w.model.solver.iterations;
   out["fascia_max_displacement_m"] = tissue::max_displacement(w, w.meshes[scene.patch.fascia]);

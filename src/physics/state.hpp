@@ -29,6 +29,8 @@ struct StepScratch {
   std::vector<ObjectRange> object_ranges;         // per object, for per-object passes
   std::vector<std::uint32_t> block_first_bad;     // per particle chunk: first diverging particle
   std::vector<std::uint32_t> validation_stamp;    // per particle, for invariant checks
+  // Contact and follow rows are ordered band 0 first at the start of a step; band 1 starts here.
+  std::size_t contact_split = 0, follow_split = 0;
 };
 
 struct State {

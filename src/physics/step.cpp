@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <span>
 
+#include "math/stopwatch.hpp"
 #include "math/validation_assert.hpp"
 #include "physics/damping.hpp"
 #include "physics/dihedral_batch.hpp"
@@ -145,34 +147,56 @@ void project_band(ConstraintSystem& cs, std::uint32_t band, const ProjectionCont
       kNoBatch);
 }
 
-// The contacts of one band (their particle's object's), in order. Positions hold the substep's
-// start until update_velocities, so they are the friction's reference.
-void project_contacts(const Model& model, State& state, std::uint32_t band, Real tau0, Real tau1,
-                      Real h) {
+// Once per step: the contact and follow rows are reordered band 0 first (std::partition: the
+// same input gives the same order, so runs stay deterministic), so that each substep's passes
+// visit their band's rows only. A row's band is its particle's object's (a follow row's, its
+// destination's).
+void order_rows_by_band(const Model& model, State& state) {
+  const Particles& P = state.particles;
+  auto fine = [&](std::uint32_t i) {
+    IMASIM_ASSERT(i < P.size());
+    return P.object[i] >= model.objects.size() || !model.objects[P.object[i]].coarse;
+  };
+  auto& contacts = state.contacts.rows;
+  state.scratch.contact_split = static_cast<std::size_t>(
+      std::partition(contacts.begin(), contacts.end(),
+                     [&](const ContactRow& c) { return fine(c.particle); }) -
+      contacts.begin());
+  auto& follows = state.follows;
+  state.scratch.follow_split = static_cast<std::size_t>(
+      std::partition(follows.begin(), follows.end(),
+                     [&](const FollowRow& f) { return fine(f.destination); }) -
+      follows.begin());
+}
+
+// The rows of `band` in a sequence ordered by order_rows_by_band.
+template <class Row>
+std::span<Row> band_rows(std::vector<Row>& rows, std::size_t split, std::uint32_t band) {
+  return band == 0 ? std::span<Row>(rows.data(), split)
+                   : std::span<Row>(rows.data() + split, rows.size() - split);
+}
+
+// The contacts of one band, in order. Positions hold the substep's start until
+// update_velocities, so they are the friction's reference.
+void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Real h) {
   Particles& P = state.particles;
-  for (ContactRow& c : state.contacts.rows) {
-    IMASIM_ASSERT(c.particle < P.size());
-    if (std::uint32_t(model.objects[P.object[c.particle]].coarse) != band) continue;
+  for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
     project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), tau0, tau1, h);
-  }
 }
 
 // The follow rows whose destination is in `band`, in order.
-void project_follows(const Model& model, State& state, std::uint32_t band) {
+void project_follows(State& state, std::uint32_t band) {
   Particles& P = state.particles;
-  for (const FollowRow& f : state.follows) {
+  for (const FollowRow& f : band_rows(state.follows, state.scratch.follow_split, band)) {
     IMASIM_ASSERT(f.source < P.size() && f.destination < P.size());
-    if (std::uint32_t(model.objects[P.object[f.destination]].coarse) != band) continue;
     if (P.inverse_mass[f.destination] == 0) continue;
     project_follow(f, P.predicted.data());
   }
 }
 
-void reset_contact_depths(const Model& model, State& state, std::uint32_t band) {
-  const Particles& P = state.particles;
-  for (ContactRow& c : state.contacts.rows) {
-    if (std::uint32_t(model.objects[P.object[c.particle]].coarse) == band) c.depth = 0;
-  }
+void reset_contact_depths(State& state, std::uint32_t band) {
+  for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
+    c.depth = 0;
 }
 
 // v = (p - x) / h, then x = p, and linear damping (eq. 4): v <- keep v with the object's factor
@@ -213,11 +237,17 @@ std::uint32_t update_velocities(const Model& model, State& state, const SubstepP
 }  // namespace
 
 StepResult step(const Model& model, State& state, Executor& exec) {
+  Stopwatch clock;
+  StepProfile profile;
   prepare_state(model, state);
   Particles& P = state.particles;
   StepScratch& scratch = state.scratch;
 #if IMASIM_VALIDATION
-  if (!validate_state(model, state).empty()) return {StepStatus::invalid_state, kInvalidIndex, 0};
+  if (!validate_state(model, state).empty()) {
+    StepResult invalid;
+    invalid.status = StepStatus::invalid_state;
+    return invalid;
+  }
 #endif
   std::copy(P.position.begin(), P.position.end(), scratch.saved_position.begin());
   std::copy(P.velocity.begin(), P.velocity.end(), scratch.saved_velocity.begin());
@@ -236,12 +266,15 @@ StepResult step(const Model& model, State& state, Executor& exec) {
     scratch.object_keep[o] = damping_keep(object.linear_damping, plan.h(object));
   }
   begin_step(model, state);
+  order_rows_by_band(model, state);
   for (ContactRow& c : state.contacts.rows)
     c.normal_impulse = 0;
   const ProjectionContext fine{P.predicted.data(), P.inverse_mass.data(),
                                scratch.projection_terms.data()};
   const ProjectionContext coarse{P.predicted.data(), P.inverse_mass.data(),
                                  scratch.coarse_terms.data()};
+
+  profile[Stage::predict] += clock.lap();
 
   StepResult result;
   exec.run([&] {
@@ -251,32 +284,41 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       const Real fine_tau0 = Real(s) / Real(solver.substeps);
       const Real coarse_tau0 = Real(s + 1 - stride) / Real(solver.substeps);
       predict(model, state, plan, exec);
+      profile[Stage::predict] += clock.lap();
       ConstraintSystem& cs = state.constraints;
       cs.reset_lambda(0);
-      reset_contact_depths(model, state, 0);
+      reset_contact_depths(state, 0);
       if (plan.coarse_active) {
         cs.reset_lambda(1);
-        reset_contact_depths(model, state, 1);
+        reset_contact_depths(state, 1);
       }
+      profile[Stage::solve] += clock.lap();
       for (std::uint32_t it = 0; it < solver.iterations; ++it) {
         project_band(cs, 0, fine, exec);
-        project_follows(model, state, 0);
-        project_contacts(model, state, 0, fine_tau0, tau1, plan.fine_h);
+        project_follows(state, 0);
+        profile[Stage::solve] += clock.lap();
+        project_contacts(state, 0, fine_tau0, tau1, plan.fine_h);
+        profile[Stage::contacts] += clock.lap();
         if (plan.coarse_active) {
           project_band(cs, 1, coarse, exec);
-          project_follows(model, state, 1);
-          project_contacts(model, state, 1, coarse_tau0, tau1, plan.coarse_h);
+          project_follows(state, 1);
+          profile[Stage::solve] += clock.lap();
+          project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h);
+          profile[Stage::contacts] += clock.lap();
         }
       }
       const std::uint32_t bad = update_velocities(model, state, plan, exec);
       if (bad != kInvalidIndex) {
-        result = {StepStatus::non_finite, bad, s};
+        result.status = StepStatus::non_finite;
+        result.particle = bad;
+        result.substep = s;
         return;
       }
       for (std::size_t o = 0; o < model.objects.size(); ++o) {
         const ObjectParams& object = model.objects[o];
         if (plan.active(object)) apply_angular_damping(model, state, o, plan.h(object));
       }
+      profile[Stage::velocities] += clock.lap();
     }
   });
 
@@ -286,11 +328,15 @@ StepResult step(const Model& model, State& state, Executor& exec) {
     const Real limit = solver.max_speed * solver.dt;
     for (std::size_t i = 0; i < P.size(); ++i) {
       if ((P.position[i] - scratch.saved_position[i]).squaredNorm() > limit * limit) {
-        result = {StepStatus::speed_limit, static_cast<std::uint32_t>(i), solver.substeps - 1};
+        result.status = StepStatus::speed_limit;
+        result.particle = static_cast<std::uint32_t>(i);
+        result.substep = solver.substeps - 1;
         break;
       }
     }
   }
+  profile[Stage::velocities] += clock.lap();
+  result.profile = profile;
   if (!result.ok()) {
     std::copy(scratch.saved_position.begin(), scratch.saved_position.begin() + P.size(),
               P.position.begin());

@@ -9,6 +9,7 @@
 #include "physics/handle.hpp"
 #include "physics/model.hpp"
 #include "physics/state.hpp"
+#include "physics/step_profile.hpp"
 
 namespace imasim::physics {
 
@@ -25,6 +26,7 @@ struct StepResult {
   StepStatus status = StepStatus::ok;
   std::uint32_t particle = kInvalidIndex;  // first offending particle, if any
   std::uint32_t substep = 0;               // substep in which it happened
+  StepProfile profile;                     // the engine's stages; callers add their own
 
   bool ok() const { return status == StepStatus::ok; }
 };

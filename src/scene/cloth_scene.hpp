@@ -20,7 +20,7 @@ struct ClothParams {
   std::uint32_t iterations = 5;  // projection sweeps per substep
   std::uint32_t substeps = 1;
   Real max_speed = 50;      // divergence guard (unit: m/s)
-  Real linear_damping = 0;  // eq. 4's k_l (unit: kg/s)
+  Real linear_damping = 0;  // eq. 4's k_l: share of velocity removed per 5 ms, in [0, 1)
   physics::Response response = physics::Response::pbd;
   Real pbd_distance_stiffness = 1;          // [0, 1]
   Real pbd_bending_stiffness = Real(0.01);  // [0, 1]

@@ -1,5 +1,6 @@
 #include "scene/thorax_scene.hpp"
 
+#include "math/stopwatch.hpp"
 #include "tissue/tissue_step.hpp"
 
 namespace imasim::scene {
@@ -76,33 +77,42 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   return scene;
 }
 
-void prepare_thorax_step(ThoraxScene& scene) {
+void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile) {
+  Stopwatch clock;
   tissue::TissueWorld& w = scene.patch.world;
   const Real dt = w.model.solver.dt;
   // The heart at the end of this step's interval drives the boundary for the step.
   tissue::advance_heart(scene.heart, w, w.state.time + double(dt));
+  profile[physics::Stage::heart] += clock.lap();
   physics::ContactSet& contacts = w.state.contacts;
   contacts.clear();
   tissue::gather_heart_contacts(scene.heart, w.state.particles, dt, scene.contact, contacts);
   tissue::gather_wall_contacts(scene.layout.wall, w.state.particles, dt, scene.contact, contacts);
+  profile[physics::Stage::contacts] += clock.lap();
 }
 
 physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec) {
   tissue::TissueWorld& w = scene.patch.world;
-  const physics::StepResult r = tissue::step_tissue_dynamics(w, exec);
+  physics::StepResult r = tissue::step_tissue_dynamics(w, exec);
   if (!r.ok()) return r;
+  Stopwatch clock;
   // Nothing should be inside the heart now; a particle that is was missed by the gathering.
   scene.missed_heart_contacts =
       tissue::collide_with_heart(scene.heart, w.state.particles, w.state.scratch.saved_position,
                                  tissue::kHeartStepSearch, scene.heart.margin);
   scene.heart.last_contacts = heart_contacts(scene);
+  r.profile[physics::Stage::contacts] += clock.lap();
   tissue::finish_tissue_step(w);
+  r.profile[physics::Stage::surfaces] += clock.lap();
   return r;
 }
 
 physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec) {
-  prepare_thorax_step(scene);
-  return finish_thorax_step(scene, exec);
+  physics::StepProfile before;
+  prepare_thorax_step(scene, before);
+  physics::StepResult r = finish_thorax_step(scene, exec);
+  r.profile += before;
+  return r;
 }
 
 std::uint32_t heart_contacts(const ThoraxScene& scene) {

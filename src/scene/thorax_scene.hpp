@@ -63,8 +63,9 @@ physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exe
 // The two halves of step_thorax_scene, for a caller that adds its own contacts in between (the
 // surgical session's instruments): advance the heart and gather the heart's and the wall's
 // contacts for the coming step; then the step itself (tissue dynamics with the contacts inside
-// the solve, the check for missed heart contacts, surfaces).
-void prepare_thorax_step(ThoraxScene& scene);
+// the solve, the check for missed heart contacts, surfaces). The first adds the time of its
+// stages to `profile`; the second's result carries the step's.
+void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile);
 physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec);
 
 // Heart contacts in touch at the end of the last step.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "math/stopwatch.hpp"
 #include "tissue/tissue_step.hpp"
 
 namespace imasim::session {
@@ -221,6 +222,8 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   tissue::TissueWorld& w = s.scene.patch.world;
   const Real dt = w.model.solver.dt;
   const double time = w.state.time;  // events are stamped with the step's start
+  Stopwatch clock;
+  physics::StepProfile profile;
 
   // 1. Instruments and camera.
   update_pose(s, s.stations[0], input.left);
@@ -265,6 +268,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   if (heat.injured > 0) {
     s.events.add(time, EventKind::injury, 1, Tissue::ima, heat.injured, heat.max_ima_rise);
   }
+  profile[physics::Stage::instruments] += clock.lap();
   if (pedal == surgery::PedalMode::cut && heat.touching > 0) {
     const Pose& before = hook.previous_pose;
     const Vec3 a0 = before.translation;
@@ -299,14 +303,19 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   // 4. The scene, with the instruments' contacts inside its solve (with the heart's and the
   // wall's): tissue is kept out of the shafts, the closed jaws and the electrode, with friction
   // against each contact point's own motion.
-  scene::prepare_thorax_step(s.scene);
+  profile[physics::Stage::cutting] += clock.lap();
+  scene::prepare_thorax_step(s.scene, profile);
+  clock.lap();
   for (std::uint8_t k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
     build_geometry(s, st, k == 0 && held > 0);
     surgery::gather_tool_contacts(w.state.particles, st.geometry, st.previous_pose, st.pose,
                                   s.params.contact, dt, kToolContactTag + k, w.state.contacts);
   }
-  const physics::StepResult r = scene::finish_thorax_step(s.scene, exec);
+  profile[physics::Stage::contacts] += clock.lap();
+  physics::StepResult r = scene::finish_thorax_step(s.scene, exec);
+  clock.lap();
+  r.profile += profile;
   if (!r.ok()) return r;
 
   // 5. What touched; anything the gathering missed is put out now (a warning).
@@ -318,13 +327,17 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     const surgery::ContactSummary missed =
         surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
                                        st.geometry, s.params.contact, dt, s.contacts);
-    s.missed_tool_contacts += missed.count;
+    s.missed_tool_contacts += missed.inside;  // within the margin only is not a miss
     moved = moved || missed.count > 0;
     record_contacts(s, k, st, time);
   }
+  r.profile[physics::Stage::contacts] += clock.lap();
   // 6. Dissolving strands; surfaces again if contact moved tissue.
   surgery::dissolve_cut_strands(w, s.params.strand_cut);
+  r.profile[physics::Stage::cutting] += clock.lap();
   if (moved) tissue::finish_tissue_step(w);
+  r.profile[physics::Stage::surfaces] += clock.lap();
+  s.profile.add(r.profile);
   return r;
 }
 

@@ -79,6 +79,8 @@ struct SurgicalSession {
   // cuts refused for want of spare vertices.
   std::uint64_t missed_tool_contacts = 0, refused_cuts = 0;
   Real cautery_energy = 0;  // (unit: J)
+  // Where the successful steps' time went, per stage (the last step's is in its StepResult).
+  physics::ProfileTotals profile;
 };
 
 struct SessionInput {

@@ -137,6 +137,7 @@ ContactSummary resolve_tool_contacts(physics::Particles& P, std::span<const Vec3
   auto record = [&](std::uint32_t i, const SurfacePoint& s, Real depth) {
     contacts.push_back({i, s.point, s.normal, depth});
     ++summary.count;
+    if (s.distance < 0) ++summary.inside;
     const std::size_t object = std::min<std::size_t>(P.object[i], 7);
     ++summary.per_object[object];
     if (depth > summary.max_depth) {

@@ -84,7 +84,9 @@ struct ToolContact {
 
 struct ContactSummary {
   std::uint32_t count = 0;  // contacts (a particle counts once per shape it penetrates)
-  Real max_depth = 0;       // (unit: m)
+  std::uint32_t inside =
+      0;               // of which the particle was inside the shape itself, not only the margin
+  Real max_depth = 0;  // (unit: m)
   Vec3 point = Vec3::Zero(), normal = Vec3::Zero();  // of the deepest contact (the first one)
   std::uint32_t per_object[8] = {};  // contacts by ObjectId (ids >= 8 counted in slot 7)
 };

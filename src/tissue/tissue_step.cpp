@@ -4,6 +4,7 @@
 #include <string>
 
 #include "geometry/vertex_normals.hpp"
+#include "math/stopwatch.hpp"
 #include "physics/validation.hpp"
 #include "tissue/mesh_object.hpp"
 #include "tissue/strands.hpp"
@@ -47,11 +48,15 @@ void finish_setup(TissueWorld& world) {
 }
 
 physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& exec) {
+  Stopwatch clock;
   // Active couplings (eq. 8, eq. 9 with beta = 1) act inside the solve.
   world.state.follows.clear();
   for (const OffsetCoupling& c : world.couplings)
     append_follow_rows(c, world.reference, world.held, world.state.follows);
-  const physics::StepResult r = physics::step(world.model, world.state, exec);
+  const double follow_rows = clock.lap();
+  physics::StepResult r = physics::step(world.model, world.state, exec);
+  clock.lap();
+  r.profile[physics::Stage::coupling] += follow_rows;
   if (!r.ok()) return r;
   smooth_strand_velocities(world);
   // eq. 9 with beta = 0: the decay after the step, with the velocity made to agree.
@@ -60,6 +65,7 @@ physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& 
     apply_coupling(c, world.state.particles, world.reference, world.state.scratch.saved_position,
                    world.model.solver.dt, world.held);
   }
+  r.profile[physics::Stage::coupling] += clock.lap();
   return r;
 }
 
@@ -69,8 +75,11 @@ void finish_tissue_step(TissueWorld& world) {
 }
 
 physics::StepResult step_tissue(TissueWorld& world, physics::Executor& exec) {
-  const physics::StepResult r = step_tissue_dynamics(world, exec);
-  if (r.ok()) finish_tissue_step(world);
+  physics::StepResult r = step_tissue_dynamics(world, exec);
+  if (!r.ok()) return r;
+  Stopwatch clock;
+  finish_tissue_step(world);
+  r.profile[physics::Stage::surfaces] += clock.lap();
   return r;
 }
 
