@@ -11,6 +11,7 @@ declare -A allowed=(
   [surgery]="surgery tissue physics geometry math"
   [scene]="scene tissue physics geometry math"
   [session]="session scene surgery tissue physics geometry math"
+  [metrics]="metrics surgery tissue physics geometry math"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

@@ -36,15 +36,17 @@ nlohmann::ordered_json profile_report(const physics::ProfileTotals& totals) {
   return stages;
 }
 
-void print_report(const nlohmann::ordered_json& out, bool json) {
+bool print_report(const nlohmann::ordered_json& out, bool json) {
   if (json) {
     std::cout << out.dump() << '\n';
-    return;
+  } else {
+    for (const auto& [key, value] : out.items()) {
+      std::cout << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump())
+                << '\n';
+    }
   }
-  for (const auto& [key, value] : out.items()) {
-    std::cout << key << ": " << (value.is_string() ? value.get<std::string>() : value.dump())
-              << '\n';
-  }
+  std::cout.flush();
+  return static_cast<bool>(std::cout);
 }
 
 }  // namespace imasim::cli

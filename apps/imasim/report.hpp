@@ -18,6 +18,7 @@ void add_status(nlohmann::ordered_json& out, bool positions_finite,
 // Mean milliseconds per step in each stage, and their sum, over the steps of `totals`.
 nlohmann::ordered_json profile_report(const physics::ProfileTotals& totals);
 
-void print_report(const nlohmann::ordered_json& out, bool json);
+// Prints to stdout and flushes; false when stdout did not take it (a full disk, a closed pipe).
+bool print_report(const nlohmann::ordered_json& out, bool json);
 
 }  // namespace imasim::cli

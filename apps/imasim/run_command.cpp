@@ -3,18 +3,21 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
 
+#include "interrupt.hpp"
 #include "math/state_hash.hpp"
+#include "metrics/event_csv.hpp"
 #include "report.hpp"
+#include "run_progress.hpp"
 #include "scene/scene_file.hpp"
 #include "scene/thorax_scene.hpp"
 #include "session/surgical_session.hpp"
 #include "session_report.hpp"
+#include "surgery/input_script_repeat.hpp"
 #include "tissue/mesh_object.hpp"
 
 namespace imasim::cli {
@@ -31,6 +34,9 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
           ->check(CLI::Range(0.0, 3600.0));
   cmd->add_option("--script", opt->script_file,
                   "Input script driving the instruments (docs/input_script.md)");
+  cmd->add_option("--repeat", opt->repeat,
+                  "Play the script this many times in a row, one cycle every (its end + 0.5 s)")
+      ->check(CLI::Range(1, 100000));
   cmd->add_option("--events", opt->events_file, "Write the session's events to this CSV file");
   cmd->add_flag("--static", opt->static_heart, "Freeze the heart at its static phase (70 %)");
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
@@ -48,6 +54,8 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
+  cmd->add_flag("--progress", opt->progress,
+                "Report the simulated time on stderr every few seconds (always on a terminal)");
   return opt;
 }
 
@@ -76,20 +84,29 @@ int run_run_command(const RunOptions& o) {
   if (!o.script_file.empty()) {
     try {
       script = surgery::load_input_script(o.script_file);
+      if (o.repeat > 1) {
+        script = surgery::repeat_input_script(*script, o.repeat, script->end_time() + 0.5);
+      }
     } catch (const surgery::InputScriptError& e) {
       std::cerr << e.what() << '\n';
       return 2;
     }
   }
-  std::ofstream events_out;
+  if (o.repeat > 1 && !script) {
+    std::cerr << "imasim run: --repeat needs --script (it repeats the script)\n";
+    return 2;
+  }
+  std::optional<metrics::EventCsvWriter> events_out;
   if (!o.events_file.empty()) {
     if (!script) {
       std::cerr << "imasim run: --events needs --script (events come from the instruments)\n";
       return 2;
     }
-    events_out.open(o.events_file);
-    if (!events_out) {
-      std::cerr << "imasim run: cannot write the events file " << o.events_file << '\n';
+    try {
+      const std::string inputs[] = {o.scene_file, o.script_file};
+      events_out.emplace(metrics::OutputFile(o.events_file, "the events file", inputs));
+    } catch (const metrics::OutputError& e) {
+      std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
     }
   }
@@ -123,7 +140,10 @@ int run_run_command(const RunOptions& o) {
   std::uint64_t missed_heart_contacts = 0;
   physics::ProfileTotals profile;
   std::uint64_t done = 0;
-  for (; done < steps; ++done) {
+  std::optional<std::string> output_failure;
+  install_interrupt_handlers();
+  RunProgress progress(seconds, double(w.model.solver.dt), o.progress, std::cerr);
+  for (; done < steps && interrupt_signal() == 0; ++done) {
     const auto t0 = std::chrono::steady_clock::now();
     const physics::StepResult r =
         surgical
@@ -143,6 +163,25 @@ int run_run_command(const RunOptions& o) {
       ima_motion = std::max(
           ima_motion,
           double((w.state.particles.position[i] - w.state.particles.rest_position[i]).norm()));
+    }
+    if (events_out) {
+      try {
+        events_out->append_new(surgical->events);
+      } catch (const metrics::OutputError& e) {
+        output_failure = e.what();
+        ++done;
+        break;
+      }
+    }
+    progress.update(w.state.time);
+  }
+  progress.finish();
+  // Whatever ended the run, the events recorded so far reach the file.
+  if (events_out && !output_failure) {
+    try {
+      events_out->finish(surgical->events);
+    } catch (const metrics::OutputError& e) {
+      output_failure = e.what();
     }
   }
   const double median_ms = median(step_ms);
@@ -183,16 +222,26 @@ int run_run_command(const RunOptions& o) {
   if (surgical) {
     out["script"] = o.script_file;
     add_session_report(out, *surgical);
-    if (events_out.is_open()) {
-      write_events_csv(events_out, surgical->events);
-      if (!events_out) {
-        std::cerr << "imasim run: writing the events file " << o.events_file << " failed\n";
-        return 2;
-      }
-    }
+    if (events_out) out["events_written"] = events_out->written();
   }
   add_status(out, finite, failure, done);
-  print_report(out, o.json);
+  if (const int signal = interrupt_signal(); signal != 0) {
+    out["status"] = "interrupted";
+    out["signal"] = signal;
+  }
+  if (output_failure) {
+    out["status"] = "output_failed";
+    out["output_error"] = *output_failure;
+  }
+  if (!print_report(out, o.json)) {
+    std::cerr << "imasim run: cannot write the report to stdout\n";
+    return 4;
+  }
+  if (output_failure) {
+    std::cerr << "imasim run: " << *output_failure << '\n';
+    return 4;
+  }
+  if (const int signal = interrupt_signal(); signal != 0) return interrupted_exit_status(signal);
   return failure.ok() ? 0 : 3;
 }
 

@@ -21,14 +21,18 @@ struct RunOptions {
   std::uint32_t substeps = 0;    // 0: the scene's
   std::uint32_t iterations = 0;  // 0: the scene's
   bool json = false;
-  std::string script_file;  // empty: no instruments; else a surgical session driven by it
-  std::string events_file;  // empty: events only counted; else written there as CSV
+  bool progress = false;     // progress lines on stderr even when it is not a terminal
+  std::string script_file;   // empty: no instruments; else a surgical session driven by it
+  std::uint32_t repeat = 1;  // plays of the script in a row
+  std::string events_file;   // empty: events only counted; else written there as CSV
   CLI::Option* seconds_option = nullptr;  // given on the command line?
 };
 
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app);
 
-// Returns the exit code (0 ok, 2 bad request, 3 the simulation diverged).
+// Returns the exit code: 0 ok, 2 bad request, 3 the simulation refused a step, 4 an output could
+// not be written, 128 + signal when SIGINT, SIGTERM or SIGHUP ended the run (its outputs and
+// report are complete up to the step it stopped at).
 int run_run_command(const RunOptions& options);
 
 }  // namespace imasim::cli

@@ -1,7 +1,5 @@
 #include "session_report.hpp"
 
-#include <cstdio>
-
 namespace imasim::cli {
 
 void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSession& s) {
@@ -33,17 +31,6 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
   warnings["cuts_refused"] = s.refused_cuts;
   warnings["missed_tool_contacts"] = s.missed_tool_contacts;
   out["warnings"] = warnings;
-}
-
-void write_events_csv(std::ostream& out, const surgery::EventLog& log) {
-  out << "time_s,kind,instrument,tissue,count,value\n";
-  char line[160];
-  for (const surgery::Event& e : log.events) {
-    std::snprintf(line, sizeof line, "%.4f,%s,%s,%s,%u,%.6g\n", e.time, surgery::to_string(e.kind),
-                  e.instrument == 0 ? "left" : "right", surgery::to_string(e.tissue), e.count,
-                  double(e.value));
-    out << line;
-  }
 }
 
 }  // namespace imasim::cli

@@ -66,4 +66,18 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
   }
 }
 
+// After the velocity update of a substep in which the contact pushed its particle out (depth >
+// 0): the push resolved a penetration and must not also launch the particle. Its normal velocity
+// relative to the surface is kept at or below zero (an inelastic contact, restitution 0, as the
+// velocity pass of Mueller et al. 2020, 3.6). Without it a plane found a distance D above the
+// particle at a step's start sends it off at D / h, a speed that grows as the substeps shrink
+// (measured: the resting default scene gained energy above about 200 substeps and diverged at
+// 400). inverse_dt: 1 / the step (the surface moves from point0 to point1 over it) (unit: 1/s).
+inline void remove_separating_velocity(const ContactRow& c, Vec3* v, Real inverse_dt) {
+  if (!(c.depth > 0)) return;
+  const Vec3 surface_velocity = (c.point1 - c.point0) * inverse_dt;
+  const Real separating = c.normal.dot(v[c.particle] - surface_velocity);
+  if (separating > 0) v[c.particle] -= separating * c.normal;
+}
+
 }  // namespace imasim::physics

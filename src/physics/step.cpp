@@ -194,6 +194,12 @@ void project_follows(State& state, std::uint32_t band) {
   }
 }
 
+void remove_separating_velocities(State& state, std::uint32_t band, Real inverse_dt) {
+  Vec3* v = state.particles.velocity.data();
+  for (const ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
+    remove_separating_velocity(c, v, inverse_dt);
+}
+
 void reset_contact_depths(State& state, std::uint32_t band) {
   for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
     c.depth = 0;
@@ -314,6 +320,8 @@ StepResult step(const Model& model, State& state, Executor& exec) {
         result.substep = s;
         return;
       }
+      remove_separating_velocities(state, 0, 1 / solver.dt);
+      if (plan.coarse_active) remove_separating_velocities(state, 1, 1 / solver.dt);
       for (std::size_t o = 0; o < model.objects.size(); ++o) {
         const ObjectParams& object = model.objects[o];
         if (plan.active(object)) apply_angular_damping(model, state, o, plan.h(object));
