@@ -255,4 +255,85 @@ TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {
   }
 }
 
+// Issue 12's hostile command lines and files: each refused at once with a message naming what
+// is wrong (and, for a scene file, its line and key), never a crash, a hang or a silent run.
+void write_file(const std::string& path, const std::string& text) {
+  FILE* f = std::fopen(path.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fputs(text.c_str(), f);
+  std::fclose(f);
+}
+
+TEST(HostileInput, BadArgumentsAreRefusedNamingTheOption) {
+  const std::string dir = ::testing::TempDir();
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string message;
+  };
+  const Case cases[] = {
+      {"run --headless --seconds nan", 105,
+       "--seconds: expected a finite number in [0, 3600], got 'nan'"},
+      {"run --headless --seconds inf", 105, "--seconds: expected a finite number"},
+      {"run --headless --heart-rate nan", 105,
+       "--heart-rate: expected a finite number in [20, 250], got 'nan'"},
+      {"run --headless --patient-seed -1", 105,
+       "--patient-seed: expected a whole number in [0, 9000000000000000000], got '-1'"},
+      {"run --headless --scene ''", 105, "--scene: expected a file name, got an empty one"},
+      {"run --headless --script ''", 105, "--script: expected a file name, got an empty one"},
+      {"scene check ''", 105, "FILE: expected a file name, got an empty one"},
+      {"run --headless --scene " + dir, 2, "cannot open the scene file: is a directory"},
+      {"scene check " + dir, 1, "cannot open the scene file: is a directory"},
+      {"scene check /dev/zero", 1, "/dev/zero: cannot open the scene file: not a regular file"},
+      {"run --headless --script /dev/zero", 2,
+       "/dev/zero: cannot open the input script: not a regular file"},
+      {"run --headless --substeps 1000", 105, "--substeps: Value 1000 not in range 1 to 512"},
+      {"run --headless --substeps 512 --iterations 512", 2,
+       "imasim run: substeps x iterations = 512 x 512 = 262144 sweeps per step, above the "
+       "limit of 512"},
+      {"cloth --iterations 10000", 105, "--iterations: Value 10000 not in range 1 to 64"},
+      {"cloth --n 4096", 2, "cloth: the scene would have up to 16777216 particles"},
+  };
+  for (const Case& c : cases) {
+    const Outcome r = run_imasim(c.args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.args << " -> " << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << " -> " << r.output;
+  }
+}
+
+TEST(HostileInput, ScriptTimesInMillisecondsAreRefused) {
+  const std::string path = ::testing::TempDir() + "imasim_ms.script";
+  write_file(path, "0 right pedal off\n5000 right pedal cut\n");
+  const Outcome r = run_imasim("run --headless --script " + path);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(path + ":2: time 5000 s is after the limit of 3600 s"), std::string::npos)
+      << r.output;
+  write_file(path, "1e308 left jaw open\n");
+  const Outcome huge = run_imasim("run --headless --script " + path);
+  EXPECT_EQ(huge.exit_code, 2) << huge.output;
+  EXPECT_NE(huge.output.find(path + ":1: time 1e308 s is after the limit"), std::string::npos)
+      << huge.output;
+}
+
+// `scene check` refuses what `run` refuses, at the key: a sternum at 1e200 m passed the check
+// and then failed in the run's set-up with a message naming no key.
+TEST(HostileInput, SceneCheckRefusesWhatRunRefusesAtTheKey) {
+  const std::string path = ::testing::TempDir() + "imasim_far.toml";
+  for (const std::string& text :
+       {std::string("[anatomy]\nsternum_position_m = [1e200, 0, 0]\n"),
+        std::string("[anatomy]\nheart_offset_m = [1000, 0, 0]\n"),
+        std::string("[anatomy]\nheart_offset_m = [1e300, -1e300, 1e300]\n")}) {
+    write_file(path, text);
+    const std::string key = text.substr(10, text.find(' ', 10) - 10);
+    const Outcome check = run_imasim("scene check " + path);
+    EXPECT_EQ(check.exit_code, 1) << check.output;
+    EXPECT_NE(check.output.find(path + ":2: key 'anatomy." + key + "'"), std::string::npos)
+        << check.output;
+    const Outcome run = run_imasim("run --headless --seconds 0.01 --scene " + path);
+    EXPECT_EQ(run.exit_code, 2) << run.output;
+    EXPECT_NE(run.output.find(path + ":2: key 'anatomy." + key + "'"), std::string::npos)
+        << run.output;
+  }
+}
+
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -416,6 +417,36 @@ TEST(InputScript, BadNumbersAreRefused) {
   EXPECT_EQ(s.camera.insertion[0].value, Real(0.05));
 }
 
+// Issue 12: a time in milliseconds ("5000" for 5 s) made a run 5000 s long, and 1e308 made the
+// run's step count overflow; any time after an hour is refused with a hint.
+TEST(InputScript, TimesAfterAnHourAreRefused) {
+  EXPECT_TRUE(fails_with("0 right pedal off\n5000 right pedal cut\n",
+                         "script.txt:2: time 5000 s is after the limit of 3600 s (an hour); "
+                         "times are in seconds: was it written in milliseconds?"));
+  EXPECT_TRUE(fails_with("1e308 left jaw open\n", "script.txt:1: time 1e308 s is after the limit"));
+  EXPECT_TRUE(fails_with("1.7976931348623157e308 left jaw open\n", "is after the limit"));
+  EXPECT_EQ(parse_input_script("3600 left jaw open\n", "ok.txt").end_time(), 3600.0);
+}
+
+TEST(InputScript, OnlyBoundedRegularFilesAreRead) {
+  const auto error = [](const std::string& path) {
+    try {
+      load_input_script(path);
+    } catch (const InputScriptError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(error("/dev/zero"),
+            "/dev/zero: cannot open the input script: not a regular file (a device or a pipe is "
+            "not read)");
+  const std::string big = ::testing::TempDir() + "imasim_big_script_" + std::to_string(getpid());
+  std::ofstream(big) << "0 left jaw open\n";
+  std::filesystem::resize_file(big, (std::uint64_t(64) << 20) + 1);  // sparse: nothing written
+  EXPECT_EQ(error(big), big + ": the input script is 67108865 bytes, above the limit of 64 MiB");
+  std::filesystem::remove(big);
+}
+
 TEST(InputScript, BadTokensAreShownEscapedOnOneLine) {
   const std::string message = error_of(std::string("0 left jaw sh\x07ut\x1b[2J\x7f\\\n"));
   EXPECT_NE(message.find("script.txt:1: jaw expects open, close or hold, got "
@@ -463,13 +494,14 @@ TEST(InputScript, LoadsAFileAndNamesAMissingOne) {
     load_input_script(missing);
     ADD_FAILURE() << "expected an error";
   } catch (const InputScriptError& e) {
-    EXPECT_EQ(std::string(e.what()), missing + ": cannot open the input script");
+    EXPECT_EQ(std::string(e.what()), missing + ": cannot open the input script: no such file");
   }
   try {  // a directory opens but reads nothing: not an empty script
     load_input_script(dir.string());
     ADD_FAILURE() << "expected an error";
   } catch (const InputScriptError& e) {
-    EXPECT_EQ(std::string(e.what()), dir.string() + ": cannot open the input script");
+    EXPECT_EQ(std::string(e.what()),
+              dir.string() + ": cannot open the input script: is a directory, not a file");
   }
   std::filesystem::remove_all(dir);
 }

@@ -87,7 +87,7 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
       {"[heart]\nbeating = 1\n", "bad.toml:2: key 'heart.beating': expected true or false"},
       {"[solver]\niterations = 2.5\n", "bad.toml:2: key 'solver.iterations': expected an integer"},
       {"[solver]\niterations = 0\n",
-       "bad.toml:2: key 'solver.iterations': expected an integer in [1, 1000], got 0"},
+       "bad.toml:2: key 'solver.iterations': expected an integer in [1, 512], got 0"},
       {"[solver]\ndt_s = \"fast\"\n", "bad.toml:2: key 'solver.dt_s': expected a number"},
       {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1, 1]]\n",
        "bad.toml:2: key 'vessel.centerline_m': unknown key"},

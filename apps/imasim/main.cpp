@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const std::exception& e) {  // e.g. out of memory while parsing the arguments
+    std::cerr << "imasim: error: " << e.what() << '\n';
+    return 2;
   }
   try {
     if (app.got_subcommand("cloth")) return imasim::cli::run_cloth_command(*cloth);
@@ -24,6 +27,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("scene")) return imasim::cli::run_scene_command(*scene);
   } catch (const std::exception& e) {
     std::cerr << "imasim: error: " << e.what() << '\n';
+    return 2;
+  } catch (...) {  // the last resort: every known failure has its own message
+    std::cerr << "imasim: error: an unexpected failure (not a standard exception)\n";
     return 2;
   }
   return 0;

@@ -8,12 +8,14 @@
 #include <optional>
 #include <vector>
 
+#include "cli_checks.hpp"
 #include "interrupt.hpp"
 #include "math/state_hash.hpp"
 #include "metrics/event_csv.hpp"
 #include "report.hpp"
 #include "run_progress.hpp"
 #include "scene/scene_file.hpp"
+#include "scene/solver_budget.hpp"
 #include "scene/thorax_scene.hpp"
 #include "session/surgical_session.hpp"
 #include "session_report.hpp"
@@ -22,34 +24,56 @@
 
 namespace imasim::cli {
 
+namespace {
+
+// The longest run: an hour of simulated time (a session lasts 10-30 minutes). Input scripts
+// stop at the same time (docs/input_script.md).
+constexpr double kMaxRunSeconds = 3600;
+// The most steps of one run: an hour of 5 ms steps is 720,000; a step's time is kept (8 bytes).
+constexpr double kMaxRunSteps = 4e6;
+// As the scene file's anatomy.patient_seed (scene_keys.cpp).
+// Runs estimated to take longer than this get a note on stderr before they start, with the cost
+// of one particle sweep measured on the reference machine (docs/PERFORMANCE.md: 20-80 ns).
+constexpr double kAnnouncedRunSeconds = 60;
+constexpr double kSecondsPerParticleSweep = 30e-9;
+constexpr std::uint64_t kMaxPatientSeed = 9'000'000'000'000'000'000u;
+
+}  // namespace
+
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run the thorax scene (beating heart, tissues)");
   cmd->add_flag("--headless", opt->headless, "Run without a window (the only mode so far)");
-  cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the built-in scene");
+  cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the built-in scene")
+      ->check(non_empty());
   opt->seconds_option =
       cmd->add_option("--seconds", opt->seconds,
                       "Simulated time (s); with --script, default: the script's end + 0.5 s")
           ->capture_default_str()
-          ->check(CLI::Range(0.0, 3600.0));
+          ->check(finite_range(0.0, kMaxRunSeconds));
   cmd->add_option("--script", opt->script_file,
-                  "Input script driving the instruments (docs/input_script.md)");
+                  "Input script driving the instruments (docs/input_script.md)")
+      ->check(non_empty());
   cmd->add_option("--repeat", opt->repeat,
                   "Play the script this many times in a row, one cycle every (its end + 0.5 s)")
       ->check(CLI::Range(1, 100000));
-  cmd->add_option("--events", opt->events_file, "Write the session's events to this CSV file");
+  cmd->add_option("--events", opt->events_file, "Write the session's events to this CSV file")
+      ->check(non_empty());
   cmd->add_flag("--static", opt->static_heart, "Freeze the heart at its static phase (70 %)");
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
                   "Heart rate (beats per minute); default: the scene's (75)")
-      ->check(CLI::Range(20.0, 250.0));
+      ->check(finite_range(20.0, 250.0));
+  // The scene file's anatomy.patient_seed takes the same range.
   cmd->add_option("--patient-seed", opt->patient_seed,
-                  "Virtual patient: 0 = the scene's anatomy, else a seeded variation of it");
+                  "Virtual patient: 0 = the scene's anatomy, else a seeded variation of it")
+      ->check(unsigned_at_most(kMaxPatientSeed));
+  const auto sweeps = static_cast<std::uint32_t>(scene::kMaxSweepsPerStep);
   cmd->add_option("--substeps", opt->substeps,
                   "Solver substeps per 5 ms step; default: the scene's")
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1u, sweeps));
   cmd->add_option("--iterations", opt->iterations,
                   "Projection sweeps per substep; default: the scene's")
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1u, sweeps));
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
@@ -80,6 +104,13 @@ int run_run_command(const RunOptions& o) {
   if (o.patient_seed) params.anatomy.patient_seed = *o.patient_seed;
   if (o.substeps > 0) params.patch.solver.substeps = o.substeps;
   if (o.iterations > 0) params.patch.solver.iterations = o.iterations;
+  if (const std::string problem = scene::solver_budget_problem(
+          scene::estimate_thorax_particles(params), params.patch.solver.substeps,
+          params.patch.solver.iterations, "substeps x iterations");
+      !problem.empty()) {
+    std::cerr << "imasim run: " << problem << '\n';
+    return 2;
+  }
   std::optional<surgery::InputScript> script;
   if (!o.script_file.empty()) {
     try {
@@ -130,6 +161,24 @@ int run_run_command(const RunOptions& o) {
   double seconds = o.seconds;
   if (script && o.seconds_option && o.seconds_option->count() == 0) {
     seconds = script->end_time() + 0.5;
+  }
+  // Each step keeps its time for the median: bounded, so that a tiny solver.dt_s cannot ask for
+  // more than memory holds.
+  if (const double wanted = seconds / double(w.model.solver.dt); !(wanted <= kMaxRunSteps)) {
+    std::cerr << "imasim run: " << seconds << " s at solver.dt_s = " << w.model.solver.dt
+              << " s is " << wanted << " steps, above the limit of " << kMaxRunSteps
+              << ": run shorter or with a longer step\n";
+    return 2;
+  }
+  // A long run says so up front instead of appearing to hang (estimated, not measured).
+  const double estimate_s = std::ceil(seconds / double(w.model.solver.dt)) *
+                            kSecondsPerParticleSweep *
+                            double(scene::estimate_thorax_particles(params)) *
+                            double(w.model.solver.substeps * w.model.solver.iterations);
+  if (estimate_s > kAnnouncedRunSeconds) {
+    std::cerr << "imasim run: note: this run may take about " << std::llround(estimate_s / 60)
+              << " min (" << seconds << " s simulated; fewer --seconds, --substeps or "
+              << "--iterations run faster)\n";
   }
   const auto steps = static_cast<std::uint64_t>(std::llround(seconds / double(w.model.solver.dt)));
   std::vector<double> step_ms;

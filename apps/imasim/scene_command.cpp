@@ -2,6 +2,8 @@
 
 #include <iostream>
 
+#include "cli_checks.hpp"
+
 #include "scene/scene_file.hpp"
 
 namespace imasim::cli {
@@ -12,7 +14,7 @@ std::shared_ptr<SceneOptions> add_scene_command(CLI::App& app) {
   cmd->require_subcommand(1);
   opt->print_default = cmd->add_subcommand("print-default", "Write the built-in scene as TOML");
   opt->check = cmd->add_subcommand("check", "Validate a scene file");
-  opt->check->add_option("FILE", opt->file, "Scene file (TOML)")->required();
+  opt->check->add_option("FILE", opt->file, "Scene file (TOML)")->required()->check(non_empty());
   return opt;
 }
 
@@ -21,11 +23,19 @@ int run_scene_command(const SceneOptions& o) {
     std::cout << scene::print_scene(scene::default_thorax_scene_params());
     return 0;
   }
+  scene::ThoraxSceneParams params;
   try {
-    scene::load_scene_file(o.file);
+    params = scene::load_scene_file(o.file);
   } catch (const scene::SceneFileError& e) {
     for (const std::string& m : e.messages())
       std::cerr << m << '\n';
+    return 1;
+  }
+  // What `run` does next: build the scene, so a file that passes here also starts there.
+  try {
+    scene::make_thorax_scene(params);
+  } catch (const std::exception& e) {
+    std::cerr << o.file << ": the scene cannot be built: " << e.what() << '\n';
     return 1;
   }
   std::cout << o.file << ": ok\n";

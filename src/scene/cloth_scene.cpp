@@ -8,6 +8,7 @@
 #include "geometry/grid_rectangle.hpp"
 #include "physics/mesh_constraints.hpp"
 #include "physics/validation.hpp"
+#include "scene/solver_budget.hpp"
 
 namespace imasim::scene {
 
@@ -23,6 +24,9 @@ ClothScene make_cloth_scene(const ClothParams& p) {
   require(p.n >= 3 && p.n <= 4096, "cloth: n must be in [3, 4096], got " + std::to_string(p.n));
   require(std::isfinite(p.size) && p.size > 0, "cloth: size must be a positive length in m");
   require(std::isfinite(p.mass) && p.mass > 0, "cloth: mass must be a positive mass in kg");
+  const std::string budget = solver_budget_problem(std::uint64_t(p.n) * p.n, p.substeps,
+                                                   p.iterations, "substeps x iterations");
+  require(budget.empty(), "cloth: " + budget);
 
   ClothScene scene;
   physics::Model& model = scene.model;

@@ -1,6 +1,7 @@
 #include "scene/heart_series.hpp"
 
 #include <numeric>
+#include <sstream>
 
 namespace imasim::scene {
 
@@ -8,6 +9,24 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
   throw MeshFileError(path + ": " + what);
+}
+
+// The size of a heart after the file's transform: a mouse heart is about 6 mm long, a human one
+// 12 cm, and the simulated cavity about 30 cm across. Outside these the mesh_scale is wrong
+// (metres read as millimetres, or the reverse) and the run would be meaningless or never end.
+constexpr Real kMinHeartSize = Real(0.005), kMaxHeartSize = Real(0.5);  // (unit: m)
+
+// The largest extent of the mesh's bounding box against the limits above.
+void check_heart_size(const std::string& path, const geometry::TriangleMesh& mesh) {
+  Vec3 lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3& v : mesh.vertices)
+    lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const Real size = (hi - lo).maxCoeff();
+  if (size >= kMinHeartSize && size <= kMaxHeartSize) return;
+  std::ostringstream s;
+  s << "the heart is " << size << " m across after heart.mesh_scale; expected " << kMinHeartSize
+    << " to " << kMaxHeartSize << " m (is the mesh_scale right for the file's unit? 0.001: mm)";
+  fail(path, s.str());
 }
 
 }  // namespace
@@ -23,6 +42,7 @@ tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec) {
   std::vector<geometry::TriangleMesh> phases;
   for (const std::string& path : spec.phase_files) {
     phases.push_back(load_mesh_file(path, options));
+    check_heart_size(path, phases.back());
     const geometry::TriangleMesh& first = phases.front();
     const geometry::TriangleMesh& mesh = phases.back();
     if (mesh.vertex_count() != first.vertex_count() ||

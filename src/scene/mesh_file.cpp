@@ -9,6 +9,8 @@
 #include <map>
 #include <tuple>
 
+#include "scene/mesh_file_limits.hpp"
+
 namespace imasim::scene {
 
 Vec3 MeshTransform::apply(const Vec3& file_point) const {
@@ -58,6 +60,7 @@ geometry::TriangleMesh load_mesh_file(const std::string& path, const MeshLoadOpt
       !options.transform.translation.allFinite()) {
     fail(path, "the mesh transform needs a positive scale and finite rotation and translation");
   }
+  if (std::string problem = mesh_file_problem(path); !problem.empty()) fail(path, problem);
   Assimp::Importer importer;
   // Only surface data matters: drop lines and points, bake the node hierarchy into the vertices.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
@@ -70,6 +73,8 @@ geometry::TriangleMesh load_mesh_file(const std::string& path, const MeshLoadOpt
     fail(path, std::string("cannot read the mesh: ") +
                    (why != nullptr && std::strlen(why) > 0 ? why : "unknown format"));
   }
+  // Before welding: a NaN would break the ordering of the weld's map.
+  if (std::string problem = mesh_coordinate_problem(*scene); !problem.empty()) fail(path, problem);
   geometry::TriangleMesh mesh = weld(*scene, options.transform);
   if (mesh.triangles.empty()) fail(path, "the file holds no triangles");
   if (std::string defect = geometry::first_mesh_defect(mesh, options.checks); !defect.empty())

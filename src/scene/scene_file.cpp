@@ -13,8 +13,12 @@
 #include <map>
 #include <sstream>
 
+#include "math/printable.hpp"
+#include "math/text_file.hpp"
 #include "scene/heart_series.hpp"
 #include "scene/scene_keys.hpp"
+#include "scene/solver_budget.hpp"
+#include "scene/toml_nesting.hpp"
 
 namespace imasim::scene {
 
@@ -45,6 +49,27 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 namespace {
 
+// A scene file with every key and its comment is about 10 KB: 100 times that is no scene.
+constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(1) << 20;
+// Keys are echoed in messages cut to this many bytes (a key may be megabytes long).
+constexpr std::size_t kShownKeyBytes = 80;
+// No "did you mean" for a longer key: the longest valid key has 34 bytes, and the edit distance
+// costs its length times the candidate's for each of about 90 candidates.
+constexpr std::size_t kMaxSuggestedKeyBytes = 64;
+// Messages listed for one file; the rest are counted. A file of thousands of unknown keys is
+// not a scene, and listing (and suggesting for) each would take minutes.
+constexpr std::size_t kMaxReportedProblems = 20;
+
+std::string shown_key(const std::string& key) {
+  return printable(key, kShownKeyBytes);
+}
+
+std::string shown_name(const std::string& name) {
+  std::string out;
+  append_printable(out, name, false);
+  return out;
+}
+
 std::string nearest(const std::string& path, bool tables) {
   std::string best;
   std::size_t best_d = std::numeric_limits<std::size_t>::max();
@@ -64,21 +89,34 @@ std::string nearest(const std::string& path, bool tables) {
 
 std::string real_text(double v);
 
+// One problem found in a file. A "did you mean" suggestion is found only for problems that are
+// reported (see kMaxReportedProblems).
+struct Problem {
+  std::uint32_t line = 0;
+  std::string text;            // after "FILE:LINE: "
+  std::string unknown;         // a key or table to suggest for; empty: none
+  bool unknown_table = false;  // suggest a table rather than a key
+};
+
 struct Reader {
   const std::string& file;
   ThoraxSceneParams& params;
-  std::vector<std::string> errors;
+  std::vector<Problem> errors;
   std::map<std::string, std::uint32_t> lines;  // line of each key given in the file
+
+  void add(std::uint32_t line, std::string text) {
+    errors.push_back({line, std::move(text), {}, false});
+  }
 
   // An error about keys that constrain each other, at the first of them given in the file.
   void cross_error(std::initializer_list<std::string> keys, const std::string& what) {
     for (const std::string& k : keys) {
       if (auto it = lines.find(k); it != lines.end()) {
-        errors.push_back(file + ":" + std::to_string(it->second) + ": key '" + k + "': " + what);
+        add(it->second, "key '" + k + "': " + what);
         return;
       }
     }
-    errors.push_back(file + ":1: key '" + *keys.begin() + "': " + what);
+    add(1, "key '" + *keys.begin() + "': " + what);
   }
 
   // Checks across keys, and the files the scene names.
@@ -96,6 +134,7 @@ struct Reader {
       cross_error({"heart.long_axis", "heart.lateral"},
                   "the heart's long axis must be non-zero and not parallel to its lateral axis");
     }
+    check_budget();
     if (!params.heart_series.phase_files.empty()) {
       try {
         load_heart_series(params.heart_series);
@@ -105,9 +144,43 @@ struct Reader {
     }
   }
 
+  // The solver's sweeps and the scene's size against solver_budget.hpp, at the keys that set
+  // what is over its limit.
+  void check_budget() {
+    const tissue::ThoracicPatchParams& p = params.patch;
+    const std::uint64_t particles = estimate_thorax_particles(params);
+    const std::string problem = solver_budget_problem(particles, p.solver.substeps,
+                                                      p.solver.iterations, "substeps x iterations");
+    if (problem.empty()) return;
+    const std::uint64_t sweeps = std::uint64_t(p.solver.substeps) * p.solver.iterations;
+    if (sweeps > kMaxSweepsPerStep)
+      return cross_error({"solver.substeps", "solver.iterations"}, problem);
+    std::initializer_list<std::string> counts = {"fascia.nx",
+                                                 "fascia.ny",
+                                                 "chest_wall.nu",
+                                                 "chest_wall.nv",
+                                                 "vessel.coarse_rings",
+                                                 "vessel.coarse_segments",
+                                                 "vessel.fine_rings",
+                                                 "vessel.fine_segments",
+                                                 "ima_fat.strands_per_face",
+                                                 "ima_fat.segments",
+                                                 "fascia_fat.strands_per_face",
+                                                 "fascia_fat.segments",
+                                                 "solver.substeps",
+                                                 "solver.iterations"};
+    cross_error(counts, problem);
+  }
+
   void error(const toml::node& node, const std::string& path, const std::string& what) {
-    errors.push_back(file + ":" + std::to_string(node.source().begin.line) + ": key '" + path +
-                     "': " + what);
+    add(node.source().begin.line, "key '" + shown_key(path) + "': " + what);
+  }
+
+  // An unknown key or table: its suggestion is looked up when the problem is reported.
+  void unknown(const toml::node& node, const std::string& path, bool table, std::string text) {
+    Problem p{node.source().begin.line, std::move(text), path, table};
+    if (path.size() > kMaxSuggestedKeyBytes) p.unknown.clear();
+    errors.push_back(std::move(p));
   }
 
   static std::string range(const SceneKey& k) {
@@ -121,13 +194,14 @@ struct Reader {
     return std::nullopt;
   }
 
-  std::optional<Vec3> vec3(const toml::node& n) {
+  // Three finite numbers, each in [key.min, key.max].
+  std::optional<Vec3> vec3(const toml::node& n, const SceneKey& key) {
     const toml::array* a = n.as_array();
     if (a == nullptr || a->size() != 3) return std::nullopt;
     Vec3 v;
     for (int i = 0; i < 3; ++i) {
       const auto x = number(*a->get(static_cast<std::size_t>(i)));
-      if (!x || !std::isfinite(*x)) return std::nullopt;
+      if (!x || !(*x >= key.min && *x <= key.max)) return std::nullopt;
       v[i] = Real(*x);
     }
     return v;
@@ -169,8 +243,8 @@ struct Reader {
             if (!n.is_boolean()) return error(n, path, "expected true or false");
             *ref(params) = *n.value<bool>();
           } else if constexpr (std::is_same_v<Ref, Vec3Ref>) {
-            const auto v = vec3(n);
-            if (!v) return error(n, path, "expected [x, y, z], three finite numbers");
+            const auto v = vec3(n, key);
+            if (!v) return error(n, path, "expected [x, y, z], three numbers in " + range(key));
             *ref(params) = *v;
           } else {
             const toml::array* a = n.as_array();
@@ -199,11 +273,9 @@ struct Reader {
         if (sub != nullptr && known) {
           walk(*sub, path);
         } else if (sub != nullptr) {
-          errors.push_back(file + ":" + std::to_string(node.source().begin.line) +
-                           ": unknown table '" + path + "'; did you mean '" + nearest(path, true) +
-                           "'?");
+          unknown(node, path, true, "unknown table '" + shown_key(path) + "'");
         } else {
-          error(node, path, "not inside a table; did you mean '" + nearest(path, false) + "'?");
+          unknown(node, path, false, "key '" + shown_key(path) + "': not inside a table");
         }
         continue;
       }
@@ -212,7 +284,7 @@ struct Reader {
         if (candidate.path == path) key = &candidate;
       }
       if (key == nullptr) {
-        error(node, path, "unknown key; did you mean '" + nearest(path, false) + "'?");
+        unknown(node, path, false, "key '" + shown_key(path) + "': unknown key");
         continue;
       }
       read(*key, node);
@@ -259,32 +331,46 @@ std::string string_text(const std::string& v) {
 }  // namespace
 
 ThoraxSceneParams parse_scene(const std::string& text, const std::string& name) {
+  const std::string shown_file = shown_name(name);
+  if (const TomlNestingProblem deep = find_deep_toml_nesting(text); deep.line > 0)
+    throw SceneFileError({shown_file + ":" + std::to_string(deep.line) + ": " + deep.what});
   ThoraxSceneParams params = default_thorax_scene_params();
   toml::table table;
   try {
     table = toml::parse(text, name);
   } catch (const toml::parse_error& e) {
-    throw SceneFileError(
-        {name + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description())});
+    // The description may quote a key from the file: shown escaped and cut short.
+    constexpr std::size_t kShownDescriptionBytes = 200;
+    throw SceneFileError({shown_file + ":" + std::to_string(e.source().begin.line) + ": " +
+                          printable(e.description(), kShownDescriptionBytes)});
   }
   Reader reader{name, params, {}, {}};
   reader.walk(table, "");
   if (reader.errors.empty()) reader.check_whole();
+  if (reader.errors.empty()) return params;
   // toml++ visits keys in sorted order; report in file order.
-  std::stable_sort(
-      reader.errors.begin(), reader.errors.end(), [&](const std::string& x, const std::string& y) {
-        return std::stoul(x.substr(name.size() + 1)) < std::stoul(y.substr(name.size() + 1));
-      });
-  if (!reader.errors.empty()) throw SceneFileError(reader.errors);
-  return params;
+  std::stable_sort(reader.errors.begin(), reader.errors.end(),
+                   [](const Problem& x, const Problem& y) { return x.line < y.line; });
+  std::vector<std::string> messages;
+  for (std::size_t i = 0; i < reader.errors.size() && i < kMaxReportedProblems; ++i) {
+    const Problem& p = reader.errors[i];
+    std::string m = shown_file + ":" + std::to_string(p.line) + ": " + p.text;
+    if (!p.unknown.empty()) m += "; did you mean '" + nearest(p.unknown, p.unknown_table) + "'?";
+    messages.push_back(std::move(m));
+  }
+  if (reader.errors.size() > kMaxReportedProblems) {
+    messages.push_back(shown_file + ": " +
+                       std::to_string(reader.errors.size() - kMaxReportedProblems) +
+                       " more problems not listed (the first " +
+                       std::to_string(kMaxReportedProblems) + " are above)");
+  }
+  throw SceneFileError(messages);
 }
 
 ThoraxSceneParams load_scene_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneFileError({path + ": cannot open the scene file"});
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path);
+  const TextFile file = read_text_file(path, kMaxSceneFileBytes, "scene file");
+  if (!file.error.empty()) throw SceneFileError({shown_name(path) + ": " + file.error});
+  return parse_scene(file.text, path);
 }
 
 std::string print_scene(const ThoraxSceneParams& const_params) {

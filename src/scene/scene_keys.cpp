@@ -2,6 +2,9 @@
 
 #include <array>
 #include <limits>
+#include <numbers>
+
+#include "scene/solver_budget.hpp"
 
 namespace imasim::scene {
 
@@ -9,6 +12,18 @@ namespace {
 
 using P = ThoraxSceneParams;
 constexpr double kBig = 1e9;
+// Bounds on each component of a vector key (a set-up with a coordinate of 1e300 loops for
+// ever; one of 1e200 fails deep inside the layout with a message naming no key):
+// positions in the room frame: the thorax spans well under a metre about the origin;
+constexpr double kRoom = 1;  // (unit: m)
+// the heart's centre from the IMA's mid-course centre: the cavity is about 30 cm across;
+constexpr double kHeartReach = 0.25;  // (unit: m)
+// a mesh's move after scaling: a scanner's coordinates reach about a metre from its origin;
+constexpr double kMeshReach = 10;  // (unit: m)
+// rotation vectors (axis * angle): a larger component is degrees written as radians;
+constexpr double kTurn = 2 * std::numbers::pi;  // (unit: rad)
+// directions: only their direction counts; the bound keeps products of them finite.
+constexpr double kDirection = 1e3;
 
 // Keys of the two strand sets differ only in the set they address.
 #define IMASIM_STRAND_KEYS(table, member)                                                         \
@@ -44,8 +59,8 @@ constexpr double kBig = 1e9;
 const SceneKey kKeys[] = {
     {"anatomy.patient_seed", SeedRef([](P& p) { return &p.anatomy.patient_seed; }), 0, 9e18,
      "0 = the typical patient below; else a virtual patient varied about it (docs/anatomy.md)"},
-    {"anatomy.sternum_position_m", Vec3Ref([](P& p) { return &p.anatomy.sternum_position; }), 0, 0,
-     "midline of the sternum's inner surface at the IMA's cranial end"},
+    {"anatomy.sternum_position_m", Vec3Ref([](P& p) { return &p.anatomy.sternum_position; }),
+     -kRoom, kRoom, "midline of the sternum's inner surface at the IMA's cranial end"},
     {"anatomy.sternum_width_m", RealRef([](P& p) { return &p.anatomy.sternum_width; }), 0.015, 0.06,
      "sternum width (typical 25-40 mm)"},
     {"anatomy.ima_lateral_offset_m", RealRef([](P& p) { return &p.anatomy.ima_lateral_offset; }),
@@ -68,16 +83,17 @@ const SceneKey kKeys[] = {
      "cranio-caudal pitch of the ribs (display)"},
     {"anatomy.heart_scale", RealRef([](P& p) { return &p.anatomy.heart_scale; }), 0.5, 2,
      "on the procedural heart's lengths and radii"},
-    {"anatomy.heart_offset_m", Vec3Ref([](P& p) { return &p.anatomy.heart_offset; }), 0, 0,
-     "LV centre from the IMA's mid-course centre"},
-    {"anatomy.heart_tilt_rad", Vec3Ref([](P& p) { return &p.anatomy.heart_tilt; }), 0, 0,
+    {"anatomy.heart_offset_m", Vec3Ref([](P& p) { return &p.anatomy.heart_offset; }), -kHeartReach,
+     kHeartReach, "LV centre from the IMA's mid-course centre"},
+    {"anatomy.heart_tilt_rad", Vec3Ref([](P& p) { return &p.anatomy.heart_tilt; }), -kTurn, kTurn,
      "axis * angle turning the heart's orientation"},
 
     {"solver.dt_s", RealRef([](P& p) { return &p.patch.solver.dt; }), 1e-5, 0.1,
      "step; the paper's 5 ms (2.3.1)"},
-    {"solver.substeps", CountRef([](P& p) { return &p.patch.solver.substeps; }), 1, 1000,
-     "substeps per 5 ms step: the solver's accuracy (docs/physics.md)"},
-    {"solver.iterations", CountRef([](P& p) { return &p.patch.solver.iterations; }), 1, 1000,
+    {"solver.substeps", CountRef([](P& p) { return &p.patch.solver.substeps; }), 1,
+     double(kMaxSweepsPerStep), "substeps per 5 ms step: the solver's accuracy (docs/physics.md)"},
+    {"solver.iterations", CountRef([](P& p) { return &p.patch.solver.iterations; }), 1,
+     double(kMaxSweepsPerStep),
      "projection sweeps per substep (the paper: 5 sweeps of one 5 ms step)"},
     {"solver.coarse_stride", CountRef([](P& p) { return &p.patch.solver.coarse_stride; }), 1, 1000,
      "the fat strands step every this many substeps (gcd with substeps)"},
@@ -101,9 +117,9 @@ const SceneKey kKeys[] = {
      "base-apex shortening at end-systole"},
     {"heart.twist_rad", RealRef([](P& p) { return &p.heart.twist; }), -1.5, 1.5,
      "apex rotation against the base at end-systole"},
-    {"heart.long_axis", Vec3Ref([](P& p) { return &p.heart.long_axis; }), 0, 0,
+    {"heart.long_axis", Vec3Ref([](P& p) { return &p.heart.long_axis; }), -kDirection, kDirection,
      "direction base -> apex"},
-    {"heart.lateral", Vec3Ref([](P& p) { return &p.heart.lateral; }), 0, 0,
+    {"heart.lateral", Vec3Ref([](P& p) { return &p.heart.lateral; }), -kDirection, kDirection,
      "direction towards the right ventricle"},
     {"heart.lv_length_m", RealRef([](P& p) { return &p.heart.lv_length; }), 0.01, 0.3,
      "LV base-apex length at end-diastole"},
@@ -120,10 +136,10 @@ const SceneKey kKeys[] = {
      "relative to this file; empty = the procedural heart"},
     {"heart.mesh_scale", RealRef([](P& p) { return &p.heart_series.transform.scale; }), 1e-6, 1e3,
      "phase files' units to m (0.001: millimetres)"},
-    {"heart.mesh_rotation_rad", Vec3Ref([](P& p) { return &p.heart_series.transform.rotation; }), 0,
-     0, "axis * angle turning the phase meshes"},
+    {"heart.mesh_rotation_rad", Vec3Ref([](P& p) { return &p.heart_series.transform.rotation; }),
+     -kTurn, kTurn, "axis * angle turning the phase meshes"},
     {"heart.mesh_translation_m",
-     Vec3Ref([](P& p) { return &p.heart_series.transform.translation; }), 0, 0,
+     Vec3Ref([](P& p) { return &p.heart_series.transform.translation; }), -kMeshReach, kMeshReach,
      "moves the phase meshes after scale and rotation"},
     {"heart.rings", CountRef([](P& p) { return &p.heart.rings; }), 3, 128,
      "surface rings per ventricle"},
@@ -182,14 +198,15 @@ const SceneKey kKeys[] = {
     {"coupling.radius_m", RealRef([](P& p) { return &p.patch.coupling_radius; }), 1e-5, 0.1,
      "strand particles this close to a surface are coupled to it"},
 
-    {"ports.target_m", Vec3Ref([](P& p) { return &p.port_target; }), 0, 0, "where every port aims"},
-    {"ports.camera_m", Vec3Ref([](P& p) { return &p.ports[0].position; }), 0, 0,
+    {"ports.target_m", Vec3Ref([](P& p) { return &p.port_target; }), -kRoom, kRoom,
+     "where every port aims"},
+    {"ports.camera_m", Vec3Ref([](P& p) { return &p.ports[0].position; }), -kRoom, kRoom,
      "camera port on the left chest wall (Fig. 2e)"},
-    {"ports.left_instrument_m", Vec3Ref([](P& p) { return &p.ports[1].position; }), 0, 0,
+    {"ports.left_instrument_m", Vec3Ref([](P& p) { return &p.ports[1].position; }), -kRoom, kRoom,
      "left instrument port"},
-    {"ports.right_instrument_m", Vec3Ref([](P& p) { return &p.ports[2].position; }), 0, 0,
+    {"ports.right_instrument_m", Vec3Ref([](P& p) { return &p.ports[2].position; }), -kRoom, kRoom,
      "right instrument port"},
-    {"ports.assistant_m", Vec3Ref([](P& p) { return &p.ports[3].position; }), 0, 0,
+    {"ports.assistant_m", Vec3Ref([](P& p) { return &p.ports[3].position; }), -kRoom, kRoom,
      "assistant port"},
 };
 

@@ -23,7 +23,7 @@ using PathListRef = std::vector<std::string>* (*)(ThoraxSceneParams&);  // file 
 struct SceneKey {
   std::string_view path;  // "table.key"
   std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PathListRef> ref;
-  double min = 0, max = 0;  // inclusive range for numbers (unused for bool and vectors)
+  double min = 0, max = 0;  // inclusive range for numbers and each component of a vector
   std::string_view doc;
 };
 

@@ -5,17 +5,15 @@
 #include <charconv>
 #include <cmath>
 #include <cstddef>
-#include <filesystem>
-#include <fstream>
 #include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <numbers>
-#include <sstream>
-#include <system_error>
 #include <utility>
 
 #include "math/angles.hpp"
+#include "math/printable.hpp"
+#include "math/text_file.hpp"
 
 namespace imasim::surgery {
 
@@ -29,33 +27,16 @@ constexpr double kMaxInsertion = 0.3;             // (unit: m)
 constexpr std::size_t kShownBytes = 40;           // a bad token is cut here in messages
 constexpr std::size_t kMaxTokens = 9;             // time target hand x y z rx ry rz
 constexpr double kTwoPi = 2 * std::numbers::pi;   // (unit: rad)
-
-// Appends `s`, control bytes as \xHH so a message stays on one line and cannot drive a
-// terminal; `token` also escapes bytes outside printable ASCII and the backslash itself, so
-// what is shown reads back unambiguously.
-void append_escaped(std::string& out, std::string_view s, bool token) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  for (const char c : s) {
-    const auto b = static_cast<unsigned char>(c);
-    const bool control = b < 0x20 || b == 0x7f;
-    if (control || (token && b > 0x7f)) {
-      out += "\\x";
-      out += kHex[b >> 4];
-      out += kHex[b & 0xf];
-    } else if (token && c == '\\') {
-      out += "\\\\";
-    } else {
-      out += c;
-    }
-  }
-}
+// The latest time a line may give: an hour, the longest `imasim run --seconds` accepts. A
+// larger time is most often milliseconds written for seconds ("5000" for 5 s), which would
+// silently make the run last that many seconds.
+constexpr double kMaxTime = 3600;  // (unit: s)
+// The largest script read: a 30-minute session with a pose every 5 ms step is about 22 MB.
+constexpr std::uint64_t kMaxScriptBytes = std::uint64_t(64) << 20;
 
 // A token as shown in a message: escaped and cut short (a line may be megabytes long).
 std::string shown(std::string_view token) {
-  std::string out;
-  append_escaped(out, token.substr(0, kShownBytes), true);
-  if (token.size() > kShownBytes) out += "...";
-  return out;
+  return printable(token, kShownBytes);
 }
 
 // Built by appending: GCC 12 warns falsely (-Wrestrict) on "'" + std::string.
@@ -68,7 +49,7 @@ std::string quoted(std::string_view token) {
 
 std::string shown_path(const std::string& path) {
   std::string out;
-  append_escaped(out, path, false);
+  append_printable(out, path, false);
   return out;
 }
 
@@ -181,6 +162,9 @@ class Parser {
     if (status != NumberStatus::ok || time < 0)
       fail("time expects a finite number >= 0 (unit: s), got " + quoted(token(0)) +
            (status == NumberStatus::out_of_range ? " (out of range)" : ""));
+    if (time > kMaxTime)
+      fail("time " + shown(token(0)) + " s is after the limit of " + limit_text(kMaxTime) +
+           " s (an hour); times are in seconds: was it written in milliseconds?");
     time += 0.0;  // -0 -> +0, so equal scripts give equal bits
     if (any_line_ && time < previous_time_)
       fail("time " + shown(token(0)) + " is earlier than the previous line's " +
@@ -393,15 +377,9 @@ InputScript parse_input_script(std::string_view text, const std::string& path) {
 }
 
 InputScript load_input_script(const std::string& path) {
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  // A directory opens as a stream that reads nothing: it would pass as an empty script.
-  if (!in || std::filesystem::is_directory(path, ec))
-    throw InputScriptError(shown_path(path) + ": cannot open the input script");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputScriptError(shown_path(path) + ": cannot read the input script");
-  return parse_input_script(text.view(), path);
+  const TextFile file = read_text_file(path, kMaxScriptBytes, "input script");
+  if (!file.error.empty()) throw InputScriptError(shown_path(path) + ": " + file.error);
+  return parse_input_script(file.text, path);
 }
 
 InstrumentInput sample_instrument(const InstrumentTrack& track, double t) {

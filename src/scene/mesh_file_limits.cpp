@@ -1,0 +1,182 @@
+#include "scene/mesh_file_limits.hpp"
+
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "math/text_file.hpp"
+
+namespace imasim::scene {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// Bytes of one PLY scalar type, 0 if unknown.
+std::uint64_t ply_type_bytes(std::string_view type) {
+  constexpr std::array<std::pair<std::string_view, std::uint64_t>, 16> kTypes = {{
+      {"char", 1},
+      {"int8", 1},
+      {"uchar", 1},
+      {"uint8", 1},
+      {"short", 2},
+      {"int16", 2},
+      {"ushort", 2},
+      {"uint16", 2},
+      {"int", 4},
+      {"int32", 4},
+      {"uint", 4},
+      {"uint32", 4},
+      {"float", 4},
+      {"float32", 4},
+      {"double", 8},
+      {"float64", 8},
+  }};
+  for (const auto& [name, bytes] : kTypes)
+    if (name == type) return bytes;
+  return 0;
+}
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;)
+    out.push_back(w);
+  return out;
+}
+
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::uint64_t min_bytes = 0;  // the fewest bytes one entry can take
+};
+
+// Each element's declared count against the bytes after the header: an entry takes at least
+// its fixed-size properties (binary) or two bytes per property (ASCII: a digit and a
+// separator). A header Assimp would refuse anyway is left to Assimp.
+std::string ply_problem(const std::string& path, std::uint64_t file_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  std::uint64_t header_bytes = 0;
+  bool binary = false;
+  std::vector<PlyElement> elements;
+  while (true) {
+    line.clear();
+    // Line by line, never more than the header's limit in all.
+    for (char c; header_bytes < kMaxPlyHeaderBytes && in.get(c);) {
+      ++header_bytes;
+      if (c == '\n') break;
+      line += c;
+    }
+    if (!in || header_bytes >= kMaxPlyHeaderBytes) {
+      if (header_bytes >= kMaxPlyHeaderBytes)
+        return "PLY header: no end_header in the first " + size_text(kMaxPlyHeaderBytes);
+      return {};  // truncated: Assimp says what is wrong
+    }
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::vector<std::string> w = words(line);
+    if (w.empty()) continue;
+    if (w[0] == "end_header") break;
+    if (w[0] == "format" && w.size() >= 2) binary = w[1] != "ascii";
+    if (w[0] == "element" && w.size() >= 3) {
+      PlyElement e{w[1], 0, 0};
+      const char* end = w[2].data() + w[2].size();
+      const auto [ptr, ec] = std::from_chars(w[2].data(), end, e.count);
+      if (ec != std::errc() || ptr != end)
+        return "PLY header: element '" + w[1] + "' has no valid count (" + w[2] + ")";
+      if (e.count > kMaxMeshElements)
+        return "PLY header: element '" + w[1] + "' declares " + w[2] +
+               " entries, above the limit of " + std::to_string(kMaxMeshElements);
+      elements.push_back(e);
+    }
+    if (w[0] == "property" && !elements.empty()) {
+      // "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME"; an empty list takes
+      // its count only.
+      const std::string_view type = w.size() >= 3 && w[1] == "list" ? w[2] : w[1];
+      elements.back().min_bytes += binary ? std::max<std::uint64_t>(ply_type_bytes(type), 1) : 2;
+    }
+  }
+  const std::uint64_t body = file_bytes - header_bytes;
+  std::uint64_t needed = 0;
+  for (const PlyElement& e : elements) {
+    // Both factors are at most 10^7 and 8 x the property count: no overflow.
+    needed += e.count * e.min_bytes;
+    if (needed > body)
+      return "PLY header: element '" + e.name + "' declares " + std::to_string(e.count) +
+             " entries, which with those before it need at least " + std::to_string(needed) +
+             " bytes, but the file has " + std::to_string(body) + " after its header";
+  }
+  return {};
+}
+
+std::string obj_problem(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<char, 1 << 16> buffer;
+  std::uint64_t line = 1, length = 0;
+  while (in) {
+    in.read(buffer.data(), buffer.size());
+    const std::streamsize got = in.gcount();
+    for (std::streamsize i = 0; i < got; ++i) {
+      if (buffer[static_cast<std::size_t>(i)] == '\n') {
+        ++line, length = 0;
+      } else if (++length > kMaxObjLineBytes) {
+        return "line " + std::to_string(line) + " is longer than " + size_text(kMaxObjLineBytes) +
+               " (an OBJ line holds one vertex or face)";
+      }
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string mesh_file_problem(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec) return "cannot read the mesh: " + ec.message();
+  if (bytes > kMaxMeshFileBytes)
+    return "the mesh file is " + std::to_string(bytes) + " bytes, above the limit of " +
+           size_text(kMaxMeshFileBytes);
+  const std::string ext = lower_extension(path);
+  if (ext == ".ply") return ply_problem(path, bytes);
+  if (ext == ".obj") return obj_problem(path);
+  return {};
+}
+
+std::string mesh_coordinate_problem(const aiScene& scene) {
+  std::uint64_t index = 0;  // over all meshes, in the order the loader welds them
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v, ++index) {
+      const aiVector3D& p = mesh.mVertices[v];
+      for (const float x : {p.x, p.y, p.z}) {
+        if (!std::isfinite(x))
+          return "vertex " + std::to_string(index) + " has a non-finite coordinate";
+        if (std::abs(double(x)) > kMaxFileCoordinate) {
+          std::ostringstream s;
+          s << "vertex " << index << " has a coordinate of " << x
+            << " file units, beyond the limit of " << kMaxFileCoordinate
+            << " (a kilometre in millimetres)";
+          return s.str();
+        }
+      }
+    }
+  }
+  return {};
+}
+
+}  // namespace imasim::scene
