@@ -154,6 +154,8 @@ int run_run_command(const RunOptions& o) {
     return 2;
   }
   scene::ThoraxScene& scene = surgical ? surgical->scene : plain;
+  for (const std::string& note : scene.setup_notes)
+    std::cerr << "imasim run: note: " << note << '\n';
   physics::Executor exec(o.threads);
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
@@ -243,6 +245,7 @@ int run_run_command(const RunOptions& o) {
   out["heart"] = params.playback.beating ? "beating" : "static";
   out["heart_rate_bpm"] = params.playback.heart_rate_bpm;
   out["heart_source"] = params.heart_series.phase_files.empty() ? "procedural" : "phase files";
+  out["setup_notes"] = scene.setup_notes;
   out["patient_seed"] = scene.patient.patient_seed;
   out["ima_depth_m"] = scene.patient.ima_depth;
   out["ima_lateral_offset_m"] = scene.patient.ima_lateral_offset;

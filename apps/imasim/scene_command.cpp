@@ -33,7 +33,8 @@ int run_scene_command(const SceneOptions& o) {
   }
   // What `run` does next: build the scene, so a file that passes here also starts there.
   try {
-    scene::make_thorax_scene(params);
+    for (const std::string& note : scene::make_thorax_scene(params).setup_notes)
+      std::cout << o.file << ": note: " << note << '\n';
   } catch (const std::exception& e) {
     std::cerr << o.file << ": the scene cannot be built: " << e.what() << '\n';
     return 1;

@@ -1,7 +1,9 @@
 #include "scene/heart_series.hpp"
 
 #include <numeric>
+
 #include <sstream>
+#include "geometry/mesh_repair.hpp"
 
 namespace imasim::scene {
 
@@ -31,17 +33,20 @@ void check_heart_size(const std::string& path, const geometry::TriangleMesh& mes
 
 }  // namespace
 
-tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec) {
+tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec, std::vector<std::string>* notes) {
   if (spec.phase_files.size() < 2) {
     throw MeshFileError("heart phase series: at least two phase files are needed, got " +
                         std::to_string(spec.phase_files.size()));
   }
   MeshLoadOptions options;
   options.transform = spec.transform;
-  options.checks.require_closed = true;  // the collider needs an inside
+  options.run_checks = false;  // repaired first (segmentations are open, with collapsed poles)
   std::vector<geometry::TriangleMesh> phases;
+  std::size_t collapsed = 0;
   for (const std::string& path : spec.phase_files) {
     phases.push_back(load_mesh_file(path, options));
+    collapsed = geometry::drop_collapsed_triangles(phases.back());
+    if (phases.back().triangles.empty()) fail(path, "every triangle collapsed when welded");
     check_heart_size(path, phases.back());
     const geometry::TriangleMesh& first = phases.front();
     const geometry::TriangleMesh& mesh = phases.back();
@@ -51,12 +56,39 @@ tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec) {
                      std::to_string(mesh.vertex_count()) + " vertices and " +
                      std::to_string(mesh.triangle_count()) + " triangles, the first phase " +
                      std::to_string(first.vertex_count()) + " and " +
-                     std::to_string(first.triangle_count()) + ": one topology is needed");
+                     std::to_string(first.triangle_count()) +
+                     " (after welding coincident vertices and dropping collapsed triangles): one "
+                     "topology is needed");
     }
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
       if (mesh.triangles[t] != first.triangles[t])
         fail(path, "triangle " + std::to_string(t) + " differs from the first phase's");
     }
+  }
+  if (collapsed > 0 && notes != nullptr) {
+    notes->push_back("heart phase files: " + std::to_string(collapsed) +
+                     " triangles per phase collapsed when coincident vertices were welded (a "
+                     "repeated vertex, no area) and were dropped");
+  }
+  // An open surface (a ventricle open at its valve plane) is capped: the collider needs an inside.
+  const geometry::BoundaryLoops boundary = geometry::boundary_loops(phases.front());
+  if (!boundary.defect.empty()) fail(spec.phase_files.front(), boundary.defect);
+  if (!boundary.loops.empty()) {
+    std::size_t added = 0;
+    for (geometry::TriangleMesh& phase : phases)
+      added = geometry::cap_boundary_loops(phase, boundary);
+    if (notes != nullptr) {
+      notes->push_back("heart phase files: the surface is open; " +
+                       std::to_string(boundary.loops.size()) +
+                       " boundary loops were closed with a cap of " + std::to_string(added) +
+                       " triangles around each loop's centre, as \"close holes\" does");
+    }
+  }
+  geometry::MeshCheckOptions checks;
+  checks.require_closed = true;
+  for (std::size_t k = 0; k < phases.size(); ++k) {
+    if (std::string defect = geometry::first_mesh_defect(phases[k], checks); !defect.empty())
+      fail(spec.phase_files[k], defect);
   }
 
   // Components as contiguous vertex and triangle ranges, in order of their first triangle.

@@ -25,6 +25,7 @@ struct MeshTransform {
 struct MeshLoadOptions {
   MeshTransform transform;
   geometry::MeshCheckOptions checks;
+  bool run_checks = true;  // false: the caller repairs the welded mesh and checks it itself
 };
 
 class MeshFileError : public std::runtime_error {

@@ -49,6 +49,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 
 namespace {
 
+std::string string_text(const std::string& v);  // with the other printers below
+
 // A scene file with every key and its comment is about 10 KB: 100 times that is no scene.
 constexpr std::uint64_t kMaxSceneFileBytes = std::uint64_t(1) << 20;
 // Keys are echoed in messages cut to this many bytes (a key may be megabytes long).
@@ -246,6 +248,15 @@ struct Reader {
             const auto v = vec3(n, key);
             if (!v) return error(n, path, "expected [x, y, z], three numbers in " + range(key));
             *ref(params) = *v;
+          } else if constexpr (std::is_same_v<Ref, ChoiceRef>) {
+            std::string words;
+            for (std::string_view c : key.choices)
+              words += (words.empty() ? "\"" : " or \"") + std::string(c) + "\"";
+            const auto v = n.value<std::string>();
+            if (!n.is_string() || !v) return error(n, path, "expected " + words);
+            if (std::find(key.choices.begin(), key.choices.end(), *v) == key.choices.end())
+              return error(n, path, "expected " + words + ", got " + string_text(*v));
+            *ref(params) = *v;
           } else {
             const toml::array* a = n.as_array();
             if (a == nullptr) return error(n, path, "expected an array of file names");
@@ -393,6 +404,8 @@ std::string print_scene(const ThoraxSceneParams& const_params) {
               out << (*ref(params) ? "true" : "false");
             } else if constexpr (std::is_same_v<Ref, Vec3Ref>) {
               out << vec3_text(*ref(params));
+            } else if constexpr (std::is_same_v<Ref, ChoiceRef>) {
+              out << string_text(*ref(params));
             } else {
               out << "[";
               const std::vector<std::string>& paths = *ref(params);

@@ -24,6 +24,8 @@ constexpr double kMeshReach = 10;  // (unit: m)
 constexpr double kTurn = 2 * std::numbers::pi;  // (unit: rad)
 // directions: only their direction counts; the bound keeps products of them finite.
 constexpr double kDirection = 1e3;
+// heart.placement (scene/heart_placement.hpp).
+constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, kAutoPlacement};
 
 // Keys of the two strand sets differ only in the set they address.
 #define IMASIM_STRAND_KEYS(table, member)                                                         \
@@ -134,6 +136,11 @@ const SceneKey kKeys[] = {
     {"heart.phase_files", PathListRef([](P& p) { return &p.heart_series.phase_files; }), 0, 0,
      "closed surface meshes (OBJ/STL/PLY/glTF), one per phase in cycle order, one topology; "
      "relative to this file; empty = the procedural heart"},
+    {"heart.placement", ChoiceRef([](P& p) { return &p.heart_series.placement; }), 0, 0,
+     "\"file\": the phase meshes where mesh_scale/rotation/translation put them; \"auto\": "
+     "placed from their shape (long axis, apex, centre) under the IMA where the built-in heart "
+     "sits, the rotation and translation ignored",
+     kPlacementChoices},
     {"heart.mesh_scale", RealRef([](P& p) { return &p.heart_series.transform.scale; }), 1e-6, 1e3,
      "phase files' units to m (0.001: millimetres)"},
     {"heart.mesh_rotation_rad", Vec3Ref([](P& p) { return &p.heart_series.transform.rotation; }),

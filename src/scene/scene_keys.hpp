@@ -19,12 +19,14 @@ using SeedRef = std::uint64_t* (*)(ThoraxSceneParams&);
 using BoolRef = bool* (*)(ThoraxSceneParams&);
 using Vec3Ref = Vec3* (*)(ThoraxSceneParams&);
 using PathListRef = std::vector<std::string>* (*)(ThoraxSceneParams&);  // file paths
+using ChoiceRef = std::string* (*)(ThoraxSceneParams&);  // one of the key's `choices`
 
 struct SceneKey {
   std::string_view path;  // "table.key"
-  std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PathListRef> ref;
+  std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PathListRef, ChoiceRef> ref;
   double min = 0, max = 0;  // inclusive range for numbers and each component of a vector
   std::string_view doc;
+  std::span<const std::string_view> choices = {};  // the words a ChoiceRef key accepts
 };
 
 std::span<const SceneKey> scene_keys();

@@ -1,6 +1,7 @@
 #include "scene/thorax_scene.hpp"
 
 #include "math/stopwatch.hpp"
+#include "scene/heart_placement.hpp"
 #include "tissue/tissue_step.hpp"
 
 namespace imasim::scene {
@@ -42,6 +43,22 @@ tissue::ThoracicPatchParams lay_out_patch(const ThoraxSceneParams& params,
   return patch;
 }
 
+namespace {
+
+// The procedural heart's parameters for the scene's layout and patient.
+tissue::HeartParams builtin_heart(const ThoraxSceneParams& params, const ThoraxScene& scene) {
+  tissue::HeartParams heart = params.heart;
+  heart.centre = scene.layout.heart_centre;
+  heart.long_axis = scene.layout.heart_long_axis;
+  heart.lateral = scene.layout.heart_lateral;
+  const Real s = scene.patient.heart_scale;
+  heart.lv_length *= s, heart.lv_radius *= s, heart.rv_length *= s, heart.rv_radius *= s;
+  heart.rv_offset *= s;
+  return heart;
+}
+
+}  // namespace
+
 ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   ThoraxScene scene;
   scene.patient = vary_anatomy(params.anatomy);
@@ -49,16 +66,13 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   scene.patch = tissue::make_thoracic_patch(lay_out_patch(params, scene.patient, scene.layout));
   tissue::HeartModel heart_model;
   if (params.heart_series.phase_files.empty()) {
-    tissue::HeartParams heart = params.heart;
-    heart.centre = scene.layout.heart_centre;
-    heart.long_axis = scene.layout.heart_long_axis;
-    heart.lateral = scene.layout.heart_lateral;
-    const Real s = scene.patient.heart_scale;
-    heart.lv_length *= s, heart.lv_radius *= s, heart.rv_length *= s, heart.rv_radius *= s;
-    heart.rv_offset *= s;
-    heart_model = tissue::make_procedural_heart(heart);
+    heart_model = tissue::make_procedural_heart(builtin_heart(params, scene));
   } else {
-    heart_model = load_heart_series(params.heart_series);
+    heart_model = load_heart_series(params.heart_series, &scene.setup_notes);
+    if (params.heart_series.placement == kAutoPlacement) {
+      scene.setup_notes.push_back(place_heart_automatically(
+          heart_model, scene.layout, tissue::make_procedural_heart(builtin_heart(params, scene))));
+    }
   }
   scene.heart = tissue::make_heart_field(heart_model, params.playback);
   scene.skeleton = make_chest_skeleton(scene.patient);
@@ -68,6 +82,14 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   tissue::add_heart_anchors(scene.heart, w, {scene.patch.wall, scene.patch.ima, scene.patch.fascia},
                             {scene.patch.ima_fat});
   tissue::advance_heart(scene.heart, w, w.state.time);
+  if (params.heart_series.phase_files.empty()) {
+    check_heart_placement(scene.heart, w, scene.layout, kBuiltinHeartOverlapTolerance,
+                          "change anatomy.heart_offset_m or the heart's size");
+  } else {
+    check_heart_placement(scene.heart, w, scene.layout, kLoadedHeartOverlapTolerance,
+                          "move the phase meshes with heart.mesh_translation_m, or set "
+                          "heart.placement = \"auto\"");
+  }
   // Tissue generated at rest may start inside the heart: put it out once, with a wide search.
   tissue::collide_with_heart(scene.heart, w.state.particles, w.state.particles.position,
                              Real(0.03));

@@ -53,9 +53,13 @@ struct ThoraxScene {
   std::uint32_t missed_heart_contacts = 0;
   std::vector<DisplayMesh> skeleton;  // display only
   std::vector<Port> ports;
+  // What set-up repaired or decided on the user's behalf (a capped heart mesh, an automatic
+  // placement), for the user to read.
+  std::vector<std::string> setup_notes;
 };
 
-// Throws MeshFileError when a heart phase file cannot be loaded.
+// Throws MeshFileError when a heart phase file cannot be loaded, HeartPlacementError when the
+// heart starts inside the tissue or through the chest wall.
 ThoraxScene make_thorax_scene(const ThoraxSceneParams& params);
 
 physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec);
