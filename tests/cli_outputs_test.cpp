@@ -137,4 +137,14 @@ TEST(RunOutputs, ASlowRunSaysHowLongItWillTake) {
   EXPECT_EQ(nlohmann::json::parse(f.out)["status"], "interrupted");
 }
 
+TEST(RunOutputs, ALongClothRunEndsCleanlyOnSigterm) {
+  const Finished f = run("cloth --n 32 --steps 100000000 --threads 1 --json",
+                         "timeout -s TERM --preserve-status 3");
+  EXPECT_EQ(f.exit_code, 128 + 15) << f.err;
+  const auto j = nlohmann::json::parse(f.out);
+  EXPECT_EQ(j["status"], "interrupted");
+  EXPECT_GT(j["steps"].get<int>(), 0);
+  EXPECT_EQ(j["finite"], true);
+}
+
 }  // namespace

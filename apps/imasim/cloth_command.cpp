@@ -5,10 +5,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "interrupt.hpp"
 #include "math/state_hash.hpp"
 #include "physics/executor.hpp"
 #include "physics/step.hpp"
 #include "report.hpp"
+#include "run_progress.hpp"
 
 namespace imasim::cli {
 
@@ -81,7 +83,10 @@ int run_cloth_command(const ClothOptions& options) {
   step_ms.reserve(options.steps);
   physics::StepResult failure;
   std::uint32_t steps_done = 0;
-  for (; steps_done < options.steps; ++steps_done) {
+  install_interrupt_handlers();
+  const double dt = double(scene.model.solver.dt);
+  RunProgress progress("imasim cloth", dt * options.steps, dt, false, std::cerr);
+  for (; steps_done < options.steps && interrupt_signal() == 0; ++steps_done) {
     const auto t0 = std::chrono::steady_clock::now();
     const physics::StepResult r = physics::step(scene.model, scene.state, exec);
     const auto t1 = std::chrono::steady_clock::now();
@@ -90,7 +95,9 @@ int run_cloth_command(const ClothOptions& options) {
       break;
     }
     step_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    progress.update(dt * (steps_done + 1));
   }
+  progress.finish();
   const double median_ms = median(step_ms);
 
   const physics::State& s = scene.state;
@@ -111,7 +118,13 @@ int run_cloth_command(const ClothOptions& options) {
   out["state_hash"] = to_hex(physics::position_hash(s));
 
   add_status(out, finite, failure, steps_done);
-  print_report(out, options.json);
+  const int signal = interrupt_signal();
+  if (signal != 0) out["status"] = "interrupted";
+  if (!print_report(out, options.json)) {
+    std::cerr << "imasim cloth: cannot write the report to stdout\n";
+    return 4;
+  }
+  if (signal != 0) return interrupted_exit_status(signal);
   return failure.ok() ? 0 : 3;
 }
 

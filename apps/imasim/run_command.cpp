@@ -193,7 +193,7 @@ int run_run_command(const RunOptions& o) {
   std::uint64_t done = 0;
   std::optional<std::string> output_failure;
   install_interrupt_handlers();
-  RunProgress progress(seconds, double(w.model.solver.dt), o.progress, std::cerr);
+  RunProgress progress("imasim run", seconds, double(w.model.solver.dt), o.progress, std::cerr);
   for (; done < steps && interrupt_signal() == 0; ++done) {
     const auto t0 = std::chrono::steady_clock::now();
     const physics::StepResult r =

@@ -23,8 +23,10 @@ std::string duration_text(double seconds) {
 
 }  // namespace
 
-RunProgress::RunProgress(double total_s, double dt, bool show_progress, std::ostream& out)
-    : total_s_(total_s),
+RunProgress::RunProgress(const char* who, double total_s, double dt, bool show_progress,
+                         std::ostream& out)
+    : who_(who),
+      total_s_(total_s),
       dt_(dt),
       show_(show_progress || ::isatty(STDERR_FILENO)),
       terminal_(::isatty(STDERR_FILENO)),
@@ -42,9 +44,9 @@ void RunProgress::update(double simulated_s) {
     if (slowdown > 1 && left > 10) {
       char text[200];
       std::snprintf(text, sizeof text,
-                    "imasim run: %.1fx slower than real time on this machine (%.1f ms a %.0f ms "
+                    "%s: %.1fx slower than real time on this machine (%.1f ms a %.0f ms "
                     "step); the %.1f s asked for will take about %s more",
-                    slowdown, 1e3 * dt_ * slowdown, 1e3 * dt_, total_s_,
+                    who_, slowdown, 1e3 * dt_ * slowdown, 1e3 * dt_, total_s_,
                     duration_text(left).c_str());
       out_ << (line_open_ ? "\n" : "") << text << '\n';
       line_open_ = false;
@@ -53,9 +55,8 @@ void RunProgress::update(double simulated_s) {
   if (!show_ || now - last_report_ < kProgressInterval) return;
   last_report_ = now;
   char text[160];
-  std::snprintf(text, sizeof text,
-                "imasim run: %.1f of %.1f s simulated (%.0f %%), %.2fx real time", simulated_s,
-                total_s_, total_s_ > 0 ? 100 * simulated_s / total_s_ : 100.0,
+  std::snprintf(text, sizeof text, "%s: %.1f of %.1f s simulated (%.0f %%), %.2fx real time", who_,
+                simulated_s, total_s_, total_s_ > 0 ? 100 * simulated_s / total_s_ : 100.0,
                 wall > 0 ? simulated_s / wall : 0.0);
   if (terminal_) {
     out_ << '\r' << text << std::flush;

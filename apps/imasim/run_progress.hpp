@@ -9,8 +9,9 @@ namespace imasim::cli {
 
 class RunProgress {
  public:
-  // `total_s`: the simulated time asked for (unit: s); `dt`: one step (unit: s).
-  RunProgress(double total_s, double dt, bool show_progress, std::ostream& out);
+  // `total_s`: the simulated time asked for (unit: s); `dt`: one step (unit: s); `who` starts
+  // each line ("imasim run").
+  RunProgress(const char* who, double total_s, double dt, bool show_progress, std::ostream& out);
   // After each step, with the simulated time reached (unit: s).
   void update(double simulated_s);
   // Ends a progress line left open on a terminal.
@@ -18,6 +19,7 @@ class RunProgress {
 
  private:
   using Clock = std::chrono::steady_clock;
+  const char* who_;
   double total_s_, dt_;
   bool show_, terminal_, warned_ = false, line_open_ = false;
   std::ostream& out_;
