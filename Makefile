@@ -4,9 +4,10 @@ JOBS ?= $(shell nproc)
 BUILD ?= build
 ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
+FUZZ_BUILD ?= build-fuzz
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build demo test unit-asan tsan soak format-check layer-check format bench clean
+.PHONY: deps configure build demo test unit-asan fuzz-build fuzz-short fuzz tsan soak format-check layer-check format bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -36,6 +37,7 @@ ASAN_SKIP = TheExampleScriptOpensGraspsCutsAndCoagulates|SameHashAcrossRunsAndTh
 test: format-check layer-check build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 	$(MAKE) unit-asan
+	$(MAKE) fuzz-short
 
 # -O1 with line tables only: the sanitizers' reports keep their file:line, and the build (the
 # larger part of CI's time) needs about a third less CPU than -O2 -g.
@@ -45,6 +47,22 @@ unit-asan: deps
 	  -DIMASIM_SANITIZE=ON -DIMASIM_VALIDATION=ON -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target imasim_unit_tests
 	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L unit -E '$(ASAN_SKIP)'
+
+# libFuzzer targets (clang, ASan+UBSan, coverage on every library): the scene file, each mesh
+# format, the input script and the command line (fuzz/). `make test` runs each for a few seconds
+# from the committed corpus (fuzz/corpus); `make fuzz` runs them for longer. Findings stay in
+# $(FUZZ_BUILD)/fuzz-artifacts; new coverage in $(FUZZ_BUILD)/fuzz-found.
+FUZZ_SHORT_SECONDS ?= 15
+FUZZ_SECONDS ?= 600
+fuzz-build: deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DIMASIM_WERROR=ON -DIMASIM_SANITIZE=ON \
+	  -DIMASIM_FUZZ=ON -DIMASIM_BUILD_TESTS=OFF -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target imasim_fuzzers
+fuzz-short: fuzz-build
+	bash scripts/run-fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SHORT_SECONDS)
+fuzz: fuzz-build
+	bash scripts/run-fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # The parallel loops under ThreadSanitizer: the tests that step the cloth, the thoracic patch
 # and cuts on several threads (a full scene is too slow under TSan). oneTBB's scheduler is not
@@ -77,4 +95,4 @@ bench: build
 	  --benchmark_out=$(BUILD)/bench/imasim_bench.json --benchmark_out_format=json
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) $(TSAN_BUILD) $(FUZZ_BUILD)

@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake make pkg-config git clang-format
+  clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtime for clang (make fuzz)
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -35,6 +35,63 @@ std::string tetrahedron_with(const std::string& second_vertex) {
   return text;
 }
 
+// Files the fuzzer found (fuzz/corpus/mesh_ply/regression_*): Debian's Assimp aborted on a
+// failed internal check, died of a bus error in its triangulation, and read for ever on a header
+// it half understood. Each is now a MeshFileError, quickly.
+TEST(MeshFileHostile, FilesThatCrashedOrHungTheImporterAreRefused) {
+  const std::string dir = IMASIM_SOURCE_DIR "/fuzz/corpus/mesh_ply/";
+  expect_refused(dir + "regression_lax_header_hang.ply",
+                 "PLY header line 2: not a PLY header line ('format binary_l\\x9eittle_endian "
+                 "1.0'; expected format, element, property, comment, obj_info or end_header)");
+  for (const char* name : {"regression_assimp_assertion.ply", "regression_assimp_bus_error.ply"}) {
+    try {
+      load_mesh_file(dir + name);
+      ADD_FAILURE() << name << " loaded";
+    } catch (const MeshFileError& e) {
+      EXPECT_NE(std::string(e.what()).find(dir + name + ": cannot read the mesh: "),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(MeshFileHostile, PlyHeadersMustBeWhatTheFormatDefines) {
+  const test::TestFolder dir;
+  const std::string vertices =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  const std::string faces = "element face 1\nproperty list uchar int vertex_indices\n";
+  const std::string body = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  test::write_text(dir / "no_end.ply", "ply\nformat ascii 1.0\n" + vertices + faces);
+  expect_refused(dir / "no_end.ply", "PLY header: the file ends before end_header");
+  test::write_text(dir / "not_ply.ply",
+                   "plx\nformat ascii 1.0\n" + vertices + faces + "end_header\n" + body);
+  expect_refused(dir / "not_ply.ply", "PLY header line 1: expected 'ply' (not a PLY file)");
+  test::write_text(dir / "typo.ply", "ply\nformat ascii 1.0\n" + vertices + "elemnt face 1\n" +
+                                         "end_header\n" + body);
+  expect_refused(dir / "typo.ply",
+                 "PLY header line 7: not a PLY header line ('elemnt face 1'; expected format, "
+                 "element, property, comment, obj_info or end_header)");
+  test::write_text(dir / "type.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\n"
+                   "property real x\nend_header\n" +
+                       body);
+  expect_refused(dir / "type.ply",
+                 "PLY header line 4: not a PLY header line ('property real x'; expected format, "
+                 "element, property, comment, obj_info or end_header)");
+  test::write_text(dir / "orphan.ply",
+                   "ply\nformat ascii 1.0\nproperty float x\n" + vertices + "end_header\n");
+  expect_refused(dir / "orphan.ply", "PLY header line 3: a property before any element");
+  // Comments, obj_info and CRLF line ends are PLY: an open triangle loads (no closed surface
+  // asked for).
+  test::write_text(dir / "ok.ply",
+                   "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\n"
+                   "obj_info a triangle\r\n" +
+                       vertices + faces + "end_header\r\n" + body);
+  const geometry::TriangleMesh triangle = load_mesh_file(dir / "ok.ply");
+  EXPECT_EQ(triangle.vertex_count(), 3u);
+  EXPECT_EQ(triangle.triangle_count(), 1u);
+}
+
 TEST(MeshFileHostile, PlyCountsAreCheckedAgainstTheFileSize) {
   const test::TestFolder dir;
   const std::string header_tail =

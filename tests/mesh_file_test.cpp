@@ -124,7 +124,7 @@ TEST(MeshFile, CorruptFilesAreRefused) {
   test::write_text(dir / "short.stl", bytes);
   expect_error(dir / "short.stl", {}, "cannot read the mesh");
   test::write_text(dir / "noise.ply", std::string("\x01\x02\x03 not a mesh at all", 22));
-  expect_error(dir / "noise.ply", {}, "cannot read the mesh");
+  expect_error(dir / "noise.ply", {}, "PLY header line 1: expected 'ply' (not a PLY file)");
   test::write_text(dir / "bad.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [");
   expect_error(dir / "bad.gltf", {}, "cannot read the mesh");
 }

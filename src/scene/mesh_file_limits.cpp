@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "math/printable.hpp"
 #include "math/text_file.hpp"
 
 namespace imasim::scene {
@@ -65,13 +66,41 @@ struct PlyElement {
   std::uint64_t min_bytes = 0;  // the fewest bytes one entry can take
 };
 
+// Why a header line is not PLY as the format defines it, or empty. Assimp's reader is lax: on
+// a header it half understands it can read for ever (found by fuzzing), so every line must be
+// one the format defines before Assimp sees the file.
+std::string ply_line_problem(const std::vector<std::string>& w, std::uint64_t line_number) {
+  const auto known = [](const std::string& type) { return ply_type_bytes(type) > 0; };
+  const std::string& key = w[0];
+  bool ok = false;
+  if (key == "format") {
+    ok = w.size() == 3 &&
+         (w[1] == "ascii" || w[1] == "binary_little_endian" || w[1] == "binary_big_endian") &&
+         w[2] == "1.0";
+  } else if (key == "comment" || key == "obj_info") {
+    ok = true;
+  } else if (key == "element") {
+    ok = w.size() == 3;
+  } else if (key == "property") {
+    ok = (w.size() == 3 && known(w[1])) ||
+         (w.size() == 5 && w[1] == "list" && known(w[2]) && known(w[3]));
+  }
+  if (ok) return {};
+  std::string shown;
+  for (const std::string& word : w)
+    shown += (shown.empty() ? "" : " ") + word;
+  return "PLY header line " + std::to_string(line_number) + ": not a PLY header line ('" +
+         printable(shown, 80) +
+         "'; expected format, element, property, comment, obj_info or end_header)";
+}
+
 // Each element's declared count against the bytes after the header: an entry takes at least
 // its fixed-size properties (binary) or two bytes per property (ASCII: a digit and a
-// separator). A header Assimp would refuse anyway is left to Assimp.
+// separator). Every header line must be one the format defines.
 std::string ply_problem(const std::string& path, std::uint64_t file_bytes) {
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  std::uint64_t header_bytes = 0;
+  std::uint64_t header_bytes = 0, line_number = 0;
   bool binary = false;
   std::vector<PlyElement> elements;
   while (true) {
@@ -82,31 +111,37 @@ std::string ply_problem(const std::string& path, std::uint64_t file_bytes) {
       if (c == '\n') break;
       line += c;
     }
-    if (!in || header_bytes >= kMaxPlyHeaderBytes) {
-      if (header_bytes >= kMaxPlyHeaderBytes)
-        return "PLY header: no end_header in the first " + size_text(kMaxPlyHeaderBytes);
-      return {};  // truncated: Assimp says what is wrong
-    }
+    ++line_number;
+    if (header_bytes >= kMaxPlyHeaderBytes)
+      return "PLY header: no end_header in the first " + size_text(kMaxPlyHeaderBytes);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::vector<std::string> w = words(line);
+    if (line_number == 1 && (w.size() != 1 || w[0] != "ply"))
+      return "PLY header line 1: expected 'ply' (not a PLY file)";
+    if (!in) return "PLY header: the file ends before end_header";
+    if (line_number == 1) continue;
     if (w.empty()) continue;
-    if (w[0] == "end_header") break;
-    if (w[0] == "format" && w.size() >= 2) binary = w[1] != "ascii";
-    if (w[0] == "element" && w.size() >= 3) {
+    if (w[0] == "end_header" && w.size() == 1) break;
+    if (std::string problem = ply_line_problem(w, line_number); !problem.empty()) return problem;
+    if (w[0] == "format") binary = w[1] != "ascii";
+    if (w[0] == "element") {
       PlyElement e{w[1], 0, 0};
       const char* end = w[2].data() + w[2].size();
       const auto [ptr, ec] = std::from_chars(w[2].data(), end, e.count);
       if (ec != std::errc() || ptr != end)
-        return "PLY header: element '" + w[1] + "' has no valid count (" + w[2] + ")";
+        return "PLY header: element '" + printable(w[1], 80) + "' has no valid count (" +
+               printable(w[2], 80) + ")";
       if (e.count > kMaxMeshElements)
-        return "PLY header: element '" + w[1] + "' declares " + w[2] +
+        return "PLY header: element '" + printable(w[1], 80) + "' declares " + w[2] +
                " entries, above the limit of " + std::to_string(kMaxMeshElements);
       elements.push_back(e);
     }
-    if (w[0] == "property" && !elements.empty()) {
+    if (w[0] == "property") {
+      if (elements.empty())
+        return "PLY header line " + std::to_string(line_number) + ": a property before any element";
       // "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME"; an empty list takes
       // its count only.
-      const std::string_view type = w.size() >= 3 && w[1] == "list" ? w[2] : w[1];
+      const std::string_view type = w[1] == "list" ? w[2] : w[1];
       elements.back().min_bytes += binary ? std::max<std::uint64_t>(ply_type_bytes(type), 1) : 2;
     }
   }

@@ -11,7 +11,6 @@ namespace imasim::scene {
 namespace {
 
 using P = ThoraxSceneParams;
-constexpr double kBig = 1e9;
 // Bounds on each component of a vector key (a set-up with a coordinate of 1e300 loops for
 // ever; one of 1e200 fails deep inside the layout with a message naming no key):
 // positions in the room frame: the thorax spans well under a metre about the origin;

@@ -357,8 +357,9 @@ tissue::TopologyChange separate_along_cut(tissue::TissueWorld& world, std::uint3
       const std::uint32_t copy =
           m.particle_count + static_cast<std::uint32_t>(edit.vertices.size());
       edit.vertices.push_back({v, v, 0});
-      for (const auto& [f, sector] : fan) {
+      for (const auto& [fan_triangle, sector] : fan) {
         if (sector != s) continue;
+        const std::uint32_t f = fan_triangle;  // a structured binding cannot be captured (clang 14)
         auto it = std::find_if(renamed.begin(), renamed.end(),
                                [&](const auto& r) { return r.first == f; });
         if (it == renamed.end()) {

@@ -1,0 +1,71 @@
+// libFuzzer target: the command line. The bytes are split into arguments at NUL bytes (at most
+// kMaxArguments) and parsed as `imasim ARGS...` is: every subcommand, option and validator of
+// the real program. Any arguments are either refused with a CLI11 parse error (a message, exit
+// code 2 or the help's 0) or accepted with values inside the documented ranges; nothing is run.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cloth_command.hpp"
+#include "fuzz_check.hpp"
+#include "run_command.hpp"
+#include "scene_command.hpp"
+
+namespace {
+
+constexpr std::size_t kMaxArguments = 64;
+
+std::vector<std::string> split_arguments(const std::uint8_t* data, std::size_t size) {
+  std::vector<std::string> args{"imasim"};
+  std::string current;
+  for (std::size_t i = 0; i < size && args.size() < kMaxArguments; ++i) {
+    if (data[i] == 0) {
+      args.push_back(current);
+      current.clear();
+    } else {
+      current.push_back(static_cast<char>(data[i]));
+    }
+  }
+  if (!current.empty() && args.size() < kMaxArguments) args.push_back(current);
+  return args;
+}
+
+void check_run_options(const imasim::cli::RunOptions& o) {
+  using imasim::fuzz::require;
+  require(std::isfinite(o.seconds) && o.seconds >= 0, "run --seconds accepted out of range");
+  require(o.heart_rate_bpm == 0 || (o.heart_rate_bpm >= 20 && o.heart_rate_bpm <= 250),
+          "run --heart-rate accepted out of range");
+  require(o.repeat >= 1, "run --repeat accepted below 1");
+  require(o.threads >= 0 && o.threads <= 1024, "run --threads accepted out of range");
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::vector<std::string> args = split_arguments(data, size);
+  std::vector<const char*> argv;
+  for (const std::string& a : args)
+    argv.push_back(a.c_str());
+  // As main() builds it.
+  CLI::App app{"imasim: robotic IMA harvesting simulator"};
+  app.require_subcommand(1);
+  auto cloth = imasim::cli::add_cloth_command(app);
+  auto run = imasim::cli::add_run_command(app);
+  auto scene = imasim::cli::add_scene_command(app);
+  (void)cloth;
+  (void)scene;
+  try {
+    app.parse(static_cast<int>(argv.size()), argv.data());
+  } catch (const CLI::ParseError& e) {
+    std::ostringstream out, err;
+    const int code = app.exit(e, out, err);
+    imasim::fuzz::require(code == 0 || !err.str().empty() || !out.str().empty(),
+                          "a refused command line with no message");
+    return 0;
+  }
+  if (app.got_subcommand("run")) check_run_options(*run);
+  return 0;
+}
