@@ -11,6 +11,7 @@
 
 #include "cloth_command.hpp"
 #include "fuzz_check.hpp"
+#include "haptics_bench_command.hpp"
 #include "run_command.hpp"
 #include "scene_command.hpp"
 
@@ -55,6 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   auto cloth = imasim::cli::add_cloth_command(app);
   auto run = imasim::cli::add_run_command(app);
   auto scene = imasim::cli::add_scene_command(app);
+  auto haptics_bench = imasim::cli::add_haptics_bench_command(app);
   (void)cloth;
   (void)scene;
   try {
@@ -67,5 +69,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (app.got_subcommand("run")) check_run_options(*run);
+  if (app.got_subcommand("haptics-bench")) {
+    imasim::fuzz::require(std::isfinite(haptics_bench->seconds) && haptics_bench->seconds >= 0.1 &&
+                              haptics_bench->seconds <= 3600,
+                          "haptics-bench --seconds accepted out of range");
+  }
   return 0;
 }

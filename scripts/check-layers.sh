@@ -6,6 +6,8 @@ cd "$(dirname "$0")/.."
 declare -A allowed=(
   [math]="math"
   [geometry]="geometry math"
+  [haptics]="haptics math"
+  [devices]="devices haptics math"
   [physics]="physics geometry math"
   [tissue]="tissue physics geometry math"
   [surgery]="surgery tissue physics geometry math"

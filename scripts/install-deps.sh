@@ -8,6 +8,7 @@ packages=(
   clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtime for clang (make fuzz)
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libopenigtlink-dev  # OpenIGTLink messages for devices (issue 13)
 )
 
 missing=()

@@ -337,3 +337,35 @@ TEST(HostileInput, SceneCheckRefusesWhatRunRefusesAtTheKey) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(HapticsBenchCommand, PrintsExactlyTheContractsKeys) {
+  // The whole loop for 2 s: physics in real time, the 1 kHz loop, two emulated devices over
+  // OpenIGTLink on loopback. The figures are measured by `make bench`'s run, not asserted here;
+  // this checks the contract and that the loop ran and rendered forces.
+  const Outcome r = run_imasim("haptics-bench --seconds 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : j.items())
+    keys.push_back(key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"contacts", "force_max_n", "latency_p99_us",
+                                            "missed_deadlines", "period_max_us", "period_p50_us",
+                                            "period_p99_error_us", "rate_hz"}));
+  EXPECT_GT(j["rate_hz"].get<double>(), 0);
+  EXPECT_GT(j["period_p50_us"].get<double>(), 0);
+  EXPECT_GE(j["force_max_n"].get<double>(), 0);
+  EXPECT_LE(j["force_max_n"].get<double>(), 3.3 + 1e-9);  // the device's limit
+  EXPECT_GE(j["missed_deadlines"].get<int>(), 0);
+}
+
+TEST(HapticsBenchCommand, RefusesABadDuration) {
+  for (const char* bad : {"nan", "-1", "0", "1e9"}) {
+    const Outcome r = run_imasim(std::string("haptics-bench --seconds ") + bad);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_NE(r.output.find("--seconds"), std::string::npos) << r.output;
+  }
+}
+
+}  // namespace

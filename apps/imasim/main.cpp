@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "cloth_command.hpp"
+#include "haptics_bench_command.hpp"
 #include "run_command.hpp"
 #include "scene_command.hpp"
 
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
   auto cloth = imasim::cli::add_cloth_command(app);
   auto run = imasim::cli::add_run_command(app);
   auto scene = imasim::cli::add_scene_command(app);
+  auto haptics_bench = imasim::cli::add_haptics_bench_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -25,6 +27,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("cloth")) return imasim::cli::run_cloth_command(*cloth);
     if (app.got_subcommand("run")) return imasim::cli::run_run_command(*run);
     if (app.got_subcommand("scene")) return imasim::cli::run_scene_command(*scene);
+    if (app.got_subcommand("haptics-bench"))
+      return imasim::cli::run_haptics_bench_command(*haptics_bench);
   } catch (const std::exception& e) {
     std::cerr << "imasim: error: " << e.what() << '\n';
     return 2;

@@ -1,0 +1,29 @@
+#pragma once
+// What a surgeon's hands and feet give the simulator, whatever the device: a pose and velocity
+// per hand (scene frame, SI), the clutch, the jaws, and the cautery pedal.
+#include <cstdint>
+
+#include "haptics/tissue_kind.hpp"
+#include "math/pose.hpp"
+
+namespace imasim::devices {
+
+enum class Hand : std::uint8_t { left, right };
+
+struct HandInput {
+  Pose pose;                     // (unit: m)
+  Vec3 velocity = Vec3::Zero();  // (unit: m/s)
+  double time_s = 0;             // the device's time stamp of the pose (unit: s)
+  bool has_pose = false;         // false until the first pose arrives
+  bool clutch = false;           // true = engaged (the hand moves without the instrument)
+  Real jaw = 0;                  // 0 open .. 1 closed
+};
+
+struct ConsoleInput {
+  HandInput left, right;
+  haptics::CauteryMode pedal = haptics::CauteryMode::off;
+
+  HandInput& hand(Hand h) { return h == Hand::left ? left : right; }
+};
+
+}  // namespace imasim::devices

@@ -1,0 +1,268 @@
+#include "devices/igtl_codec.hpp"
+
+#include <igtlMessageHeader.h>
+#include <igtlSensorMessage.h>
+#include <igtlTransformMessage.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace imasim::devices {
+
+namespace {
+
+constexpr double kFraction = 4294967296.0;
+constexpr std::size_t kTransformBodyBytes = 48;  // the header's time stamp: 2^-32 s units
+constexpr Real kMetresPerMillimetre = Real(0.001);
+// A TRANSFORM's rotation may carry float rounding; more than this is not a rotation.
+constexpr Real kRotationTolerance = Real(1e-3);
+// The largest hand position accepted (unit: m): a console's workspace is tens of centimetres.
+constexpr Real kMaxHandPosition = 2;
+
+enum DeviceSlot : std::size_t { kLeftPose, kRightPose, kLeftButtons, kRightButtons, kPedal };
+
+double stamp_seconds(igtl::MessageBase& m) {
+  unsigned int sec = 0, frac = 0;
+  m.GetTimeStamp(&sec, &frac);
+  return double(sec) + double(frac) / kFraction;
+}
+
+void set_stamp(igtl::MessageBase& m, double time_s) {
+  const double t = std::max(0.0, time_s);
+  const auto sec = static_cast<unsigned int>(std::floor(t));
+  const auto frac = static_cast<unsigned int>(std::min((t - sec) * kFraction, kFraction - 1));
+  m.SetTimeStamp(sec, frac);
+}
+
+std::vector<std::uint8_t> packed(igtl::MessageBase& m) {
+  m.Pack();
+  const auto* p = static_cast<const std::uint8_t*>(m.GetPackPointer());
+  return std::vector<std::uint8_t>(p, p + m.GetPackSize());
+}
+
+// The header bytes into a MessageHeader (unpacked), or null when they are not a header.
+igtl::MessageHeader::Pointer unpack_header(const std::uint8_t* bytes) {
+  igtl::MessageHeader::Pointer h = igtl::MessageHeader::New();
+  h->InitPack();
+  std::memcpy(h->GetPackPointer(), bytes, kIgtlHeaderBytes);
+  if (!(h->Unpack() & igtl::MessageHeader::UNPACK_HEADER)) return nullptr;
+  return h;
+}
+
+// The sensor values of a whole SENSOR message, or empty when the body does not unpack.
+std::optional<std::vector<double>> sensor_values(const igtl::MessageHeader::Pointer& h,
+                                                 const std::uint8_t* body, std::size_t bytes) {
+  // The body is its value count (1 byte), a status byte, a unit (8 bytes), then the values (8
+  // bytes each). Checked before the library reads it: it trusts the count and reads past a
+  // shorter body (found by fuzzing, fuzz/corpus/igtl_message/regression_sensor_count).
+  if (bytes < 10 || std::size_t(body[0]) * 8 + 10 != bytes) return std::nullopt;
+  igtl::SensorMessage::Pointer m = igtl::SensorMessage::New();
+  m->SetMessageHeader(h);
+  m->AllocatePack();
+  if (std::size_t(m->GetPackBodySize()) != bytes) return std::nullopt;
+  std::memcpy(m->GetPackBodyPointer(), body, bytes);
+  if (!(m->Unpack(1) & igtl::MessageHeader::UNPACK_BODY)) return std::nullopt;
+  if (std::size_t(m->GetLength()) * 8 + 10 != bytes) return std::nullopt;
+  std::vector<double> values(m->GetLength());
+  for (unsigned k = 0; k < m->GetLength(); ++k)
+    values[k] = m->GetValue(k);
+  return values;
+}
+
+}  // namespace
+
+const char* igtl_refusal_name(IgtlRefusal r) {
+  switch (r) {
+    case IgtlRefusal::bad_header:
+      return "bad_header";
+    case IgtlRefusal::oversized:
+      return "oversized";
+    case IgtlRefusal::unknown_type:
+      return "unknown_type";
+    case IgtlRefusal::unknown_device:
+      return "unknown_device";
+    case IgtlRefusal::bad_body:
+      return "bad_body";
+    case IgtlRefusal::bad_values:
+      return "bad_values";
+    case IgtlRefusal::out_of_order:
+      return "out_of_order";
+  }
+  return "?";
+}
+
+std::uint64_t IgtlCounters::refused_total() const {
+  std::uint64_t n = 0;
+  for (const std::uint64_t r : refused)
+    n += r;
+  return n;
+}
+
+IgtlDecoder::IgtlDecoder(IgtlNames names) : names_(std::move(names)) {
+  last_time_s_.fill(-std::numeric_limits<double>::infinity());
+}
+
+bool IgtlDecoder::refuse(IgtlRefusal r) {
+  ++counters_.refused[std::size_t(r)];
+  return false;
+}
+
+std::optional<IgtlHeader> IgtlDecoder::read_header(const std::uint8_t* bytes) {
+  const igtl::MessageHeader::Pointer h = unpack_header(bytes);
+  if (!h) {
+    refuse(IgtlRefusal::bad_header);
+    return std::nullopt;
+  }
+  // The version field: the first two bytes, big-endian.
+  const unsigned version = (unsigned(bytes[0]) << 8) | bytes[1];
+  if (version != 1 && version != 2) {
+    refuse(IgtlRefusal::bad_header);
+    return std::nullopt;
+  }
+  IgtlHeader out;
+  out.type = h->GetDeviceType();
+  out.device = h->GetDeviceName();
+  out.body_bytes = std::uint64_t(h->GetBodySizeToRead());
+  out.time_s = stamp_seconds(*h);
+  if (out.body_bytes > kIgtlMaxBodyBytes) {
+    refuse(IgtlRefusal::oversized);
+    return std::nullopt;
+  }
+  return out;
+}
+
+bool IgtlDecoder::later_than_last(const std::string& device, double time_s) {
+  std::size_t slot = 0;
+  if (device == names_.left_pose)
+    slot = kLeftPose;
+  else if (device == names_.right_pose)
+    slot = kRightPose;
+  else if (device == names_.left_buttons)
+    slot = kLeftButtons;
+  else if (device == names_.right_buttons)
+    slot = kRightButtons;
+  else
+    slot = kPedal;
+  if (!(time_s > last_time_s_[slot])) return false;
+  last_time_s_[slot] = time_s;
+  return true;
+}
+
+bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
+                        std::size_t body_bytes, ConsoleInput& input) {
+  const std::optional<IgtlHeader> head = read_header(header);
+  if (!head) return false;
+  if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body);
+  const igtl::MessageHeader::Pointer h = unpack_header(header);
+  const std::string& device = head->device;
+  const bool pose = device == names_.left_pose || device == names_.right_pose;
+  const bool buttons = device == names_.left_buttons || device == names_.right_buttons;
+  const bool pedal = device == names_.pedal;
+  if (head->type == "TRANSFORM") {
+    if (!pose) return refuse(IgtlRefusal::unknown_device);
+    // Twelve 4-byte floats. Checked before the library reads it: it sizes its buffer by the
+    // header and reads 48 bytes whatever the header said (found by fuzzing,
+    // fuzz/corpus/igtl_message/regression_transform_size).
+    if (body_bytes != kTransformBodyBytes) return refuse(IgtlRefusal::bad_body);
+    igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+    m->SetMessageHeader(h);
+    m->AllocatePack();
+    if (std::size_t(m->GetPackBodySize()) != body_bytes) return refuse(IgtlRefusal::bad_body);
+    std::memcpy(m->GetPackBodyPointer(), body, body_bytes);
+    if (!(m->Unpack(1) & igtl::MessageHeader::UNPACK_BODY)) return refuse(IgtlRefusal::bad_body);
+    igtl::Matrix4x4 t;
+    m->GetMatrix(t);
+    Mat3 r;
+    Vec3 p;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j)
+        r(i, j) = Real(t[i][j]);
+      p(i) = Real(t[i][3]) * kMetresPerMillimetre;  // mm on the wire, m inside
+    }
+    if (!r.allFinite() || !p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxHandPosition ||
+        !((r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() < kRotationTolerance) ||
+        !(r.determinant() > 0)) {
+      return refuse(IgtlRefusal::bad_values);
+    }
+    if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
+    HandInput& hand = input.hand(device == names_.left_pose ? Hand::left : Hand::right);
+    if (hand.has_pose && head->time_s > hand.time_s) {
+      hand.velocity = (p - hand.pose.translation) / Real(head->time_s - hand.time_s);
+    }
+    hand.pose.rotation = r;
+    hand.pose.translation = p;
+    hand.time_s = head->time_s;
+    hand.has_pose = true;
+    ++counters_.accepted;
+    return true;
+  }
+  if (head->type == "SENSOR") {
+    if (!buttons && !pedal) return refuse(IgtlRefusal::unknown_device);
+    const std::optional<std::vector<double>> values = sensor_values(h, body, body_bytes);
+    if (!values) return refuse(IgtlRefusal::bad_body);
+    const std::vector<double>& v = *values;
+    for (const double x : v)
+      if (!std::isfinite(x)) return refuse(IgtlRefusal::bad_values);
+    if (buttons) {
+      if (v.size() != 2 || (v[0] != 0 && v[0] != 1) || v[1] < 0 || v[1] > 1)
+        return refuse(IgtlRefusal::bad_values);
+      if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
+      HandInput& hand = input.hand(device == names_.left_buttons ? Hand::left : Hand::right);
+      hand.clutch = v[0] == 1;
+      hand.jaw = Real(v[1]);
+    } else {
+      if (v.size() != 1 || (v[0] != 0 && v[0] != 1 && v[0] != 2))
+        return refuse(IgtlRefusal::bad_values);
+      if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
+      input.pedal = static_cast<haptics::CauteryMode>(int(v[0]));
+    }
+    ++counters_.accepted;
+    return true;
+  }
+  return refuse(IgtlRefusal::unknown_type);
+}
+
+std::optional<std::vector<double>> decode_sensor(const std::uint8_t* header,
+                                                 const std::uint8_t* body, std::size_t body_bytes) {
+  const igtl::MessageHeader::Pointer h = unpack_header(header);
+  if (!h || std::string(h->GetDeviceType()) != "SENSOR" ||
+      std::uint64_t(h->GetBodySizeToRead()) != body_bytes || body_bytes > kIgtlMaxBodyBytes) {
+    return std::nullopt;
+  }
+  return sensor_values(h, body, body_bytes);
+}
+
+std::vector<std::uint8_t> encode_force(const std::string& device, const Vec3& force_n,
+                                       double time_s) {
+  return encode_values(device, {double(force_n.x()), double(force_n.y()), double(force_n.z())},
+                       time_s);
+}
+
+std::vector<std::uint8_t> encode_pose(const std::string& device, const Pose& pose_m,
+                                      double time_s) {
+  igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
+  m->SetDeviceName(device.c_str());
+  set_stamp(*m, time_s);
+  igtl::Matrix4x4 t;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      t[i][j] = i == 3 ? (j == 3 ? 1.0f : 0.0f)
+                       : (j == 3 ? float(pose_m.translation(i) / kMetresPerMillimetre)
+                                 : float(pose_m.rotation(i, j)));
+  m->SetMatrix(t);
+  return packed(*m);
+}
+
+std::vector<std::uint8_t> encode_values(const std::string& device,
+                                        const std::vector<double>& values, double time_s) {
+  igtl::SensorMessage::Pointer m = igtl::SensorMessage::New();
+  m->SetDeviceName(device.c_str());
+  set_stamp(*m, time_s);
+  m->SetLength(static_cast<unsigned>(values.size()));
+  for (unsigned k = 0; k < values.size(); ++k)
+    m->SetValue(k, values[k]);
+  return packed(*m);
+}
+
+}  // namespace imasim::devices

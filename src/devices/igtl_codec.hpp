@@ -1,0 +1,101 @@
+#pragma once
+// OpenIGTLink messages as imasim reads and writes them (issue 13; the protocol of 3D Slicer,
+// PLUS and ROS bridges; Debian's libopenigtlink-dev 1.11 packs and unpacks them):
+//   in:  TRANSFORM per hand (device names mapped in the scene file), in millimetres as the
+//        protocol's users send them, converted to metres here, at the edge;
+//        SENSOR "<hand> buttons": [clutch (0/1), jaw (0 open .. 1 closed)];
+//        SENSOR "pedal": [mode (0 off, 1 cut, 2 coag)];
+//   out: SENSOR "<hand> force": [Fx, Fy, Fz] in newtons, in the scene frame.
+// Every message is checked before use: its header, its CRC, a body no larger than the type
+// needs, a known type and device name, finite values, a rotation that is one, a time stamp
+// later than the device's previous one (a replayed or reordered message is refused). A refused
+// message changes nothing and is counted by reason.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "devices/hand_input.hpp"
+
+namespace imasim::devices {
+
+inline constexpr std::size_t kIgtlHeaderBytes = 58;
+// The largest body imasim reads: a SENSOR message of 255 values is 10 + 8 x 255 bytes.
+inline constexpr std::size_t kIgtlMaxBodyBytes = 2048;
+
+struct IgtlNames {
+  std::string left_pose = "LeftHand", right_pose = "RightHand";
+  std::string left_buttons = "LeftButtons", right_buttons = "RightButtons";
+  std::string pedal = "Pedal";
+  std::string left_force = "LeftForce", right_force = "RightForce";
+};
+
+enum class IgtlRefusal : std::uint8_t {
+  bad_header,      // not an OpenIGTLink version-1 header
+  oversized,       // a body larger than kIgtlMaxBodyBytes
+  unknown_type,    // a type imasim does not read
+  unknown_device,  // a device name the mapping does not name
+  bad_body,        // a CRC mismatch or a body the type cannot unpack
+  bad_values,      // non-finite values, a rotation that is not one, values out of range
+  out_of_order,    // a time stamp not later than the device's previous message
+};
+inline constexpr std::size_t kIgtlRefusals = 7;
+const char* igtl_refusal_name(IgtlRefusal r);
+
+struct IgtlCounters {
+  std::uint64_t accepted = 0;
+  std::array<std::uint64_t, kIgtlRefusals> refused{};
+  std::uint64_t refused_total() const;
+};
+
+// A header's fields, once checked.
+struct IgtlHeader {
+  std::string type, device;
+  std::uint64_t body_bytes = 0;
+  double time_s = 0;
+};
+
+class IgtlDecoder {
+ public:
+  explicit IgtlDecoder(IgtlNames names = {});
+
+  // The header of the next message, or empty (counted as refused) when it is not one or its
+  // body is too large to read; the caller then reads `body_bytes` more (or drops the link).
+  std::optional<IgtlHeader> read_header(const std::uint8_t* bytes);
+
+  // Applies a whole message (header and body) to `input`; false (and counted) when refused.
+  bool apply(const std::uint8_t* header, const std::uint8_t* body, std::size_t body_bytes,
+             ConsoleInput& input);
+
+  const IgtlCounters& counters() const { return counters_; }
+  const IgtlNames& names() const { return names_; }
+
+ private:
+  bool refuse(IgtlRefusal r);
+  bool later_than_last(const std::string& device, double time_s);
+
+  IgtlNames names_;
+  IgtlCounters counters_;
+  std::array<double, 5> last_time_s_;  // per mapped device: left/right pose, buttons, pedal
+};
+
+// The values of a whole SENSOR message (checked as apply checks it), or empty: for a device's
+// side of the link (an emulator reading its force).
+std::optional<std::vector<double>> decode_sensor(const std::uint8_t* header,
+                                                 const std::uint8_t* body, std::size_t body_bytes);
+
+// A SENSOR message with the force on one hand (unit: N), time-stamped `time_s`.
+std::vector<std::uint8_t> encode_force(const std::string& device, const Vec3& force_n,
+                                       double time_s);
+
+// A TRANSFORM message of a hand pose given in metres (sent in millimetres), for emulators and
+// tests.
+std::vector<std::uint8_t> encode_pose(const std::string& device, const Pose& pose_m, double time_s);
+
+// A SENSOR message of values (buttons, pedal), for emulators and tests.
+std::vector<std::uint8_t> encode_values(const std::string& device,
+                                        const std::vector<double>& values, double time_s);
+
+}  // namespace imasim::devices
