@@ -68,6 +68,18 @@ TEST(IgtlCodec, ButtonsAndPedalArriveAsSensorValues) {
   EXPECT_EQ(in.pedal, haptics::CauteryMode::off);
 }
 
+TEST(IgtlCodec, ABadClockCannotBreakAnOutgoingMessage) {
+  // The header's seconds are 32 bits: a time past 2106, negative or NaN is clamped, not UB.
+  IgtlDecoder d;
+  for (const double t : {1e12, -5.0, double(NAN)}) {
+    const std::vector<std::uint8_t> bytes = encode_force("LeftForce", Vec3(1, 0, 0), t);
+    const std::optional<IgtlHeader> h = d.read_header(bytes.data());
+    ASSERT_TRUE(h) << t;
+    EXPECT_TRUE(std::isfinite(h->time_s)) << t;
+    EXPECT_LE(h->time_s, 4294967296.0) << t;
+  }
+}
+
 TEST(IgtlCodec, AForceLeavesAsASensorMessageInNewtons) {
   const std::vector<std::uint8_t> bytes = encode_force("LeftForce", Vec3(0.5, -1.25, 3), 2.0);
   // Read back as a peer would: a SENSOR named LeftForce with three values.

@@ -4,6 +4,7 @@
 #include <igtlSensorMessage.h>
 #include <igtlTransformMessage.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -29,7 +30,8 @@ double stamp_seconds(igtl::MessageBase& m) {
 }
 
 void set_stamp(igtl::MessageBase& m, double time_s) {
-  const double t = std::max(0.0, time_s);
+  // The header's seconds are 32 bits: clamped, so that a bad clock cannot overflow the cast.
+  const double t = std::clamp(std::isfinite(time_s) ? time_s : 0.0, 0.0, 4294967295.0);
   const auto sec = static_cast<unsigned int>(std::floor(t));
   const auto frac = static_cast<unsigned int>(std::min((t - sec) * kFraction, kFraction - 1));
   m.SetTimeStamp(sec, frac);
