@@ -9,11 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "cloth_command.hpp"
+#include "commands.hpp"
 #include "fuzz_check.hpp"
-#include "haptics_bench_command.hpp"
-#include "run_command.hpp"
-#include "scene_command.hpp"
 
 namespace {
 
@@ -50,15 +47,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<const char*> argv;
   for (const std::string& a : args)
     argv.push_back(a.c_str());
-  // As main() builds it.
+  // The program main() parses (apps/imasim/commands.hpp).
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
-  app.require_subcommand(1);
-  auto cloth = imasim::cli::add_cloth_command(app);
-  auto run = imasim::cli::add_run_command(app);
-  auto scene = imasim::cli::add_scene_command(app);
-  auto haptics_bench = imasim::cli::add_haptics_bench_command(app);
-  (void)cloth;
-  (void)scene;
+  const imasim::cli::Commands commands = imasim::cli::add_commands(app);
   try {
     app.parse(static_cast<int>(argv.size()), argv.data());
   } catch (const CLI::ParseError& e) {
@@ -68,10 +59,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                           "a refused command line with no message");
     return 0;
   }
-  if (app.got_subcommand("run")) check_run_options(*run);
+  if (app.got_subcommand("run")) check_run_options(*commands.run);
   if (app.got_subcommand("haptics-bench")) {
-    imasim::fuzz::require(std::isfinite(haptics_bench->seconds) && haptics_bench->seconds >= 0.1 &&
-                              haptics_bench->seconds <= 3600,
+    const double seconds = commands.haptics_bench->seconds;
+    imasim::fuzz::require(std::isfinite(seconds) && seconds >= 0.1 && seconds <= 3600,
                           "haptics-bench --seconds accepted out of range");
   }
   return 0;

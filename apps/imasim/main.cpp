@@ -3,18 +3,11 @@
 #include <exception>
 #include <iostream>
 
-#include "cloth_command.hpp"
-#include "haptics_bench_command.hpp"
-#include "run_command.hpp"
-#include "scene_command.hpp"
+#include "commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
-  app.require_subcommand(1);
-  auto cloth = imasim::cli::add_cloth_command(app);
-  auto run = imasim::cli::add_run_command(app);
-  auto scene = imasim::cli::add_scene_command(app);
-  auto haptics_bench = imasim::cli::add_haptics_bench_command(app);
+  const imasim::cli::Commands commands = imasim::cli::add_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -24,11 +17,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    if (app.got_subcommand("cloth")) return imasim::cli::run_cloth_command(*cloth);
-    if (app.got_subcommand("run")) return imasim::cli::run_run_command(*run);
-    if (app.got_subcommand("scene")) return imasim::cli::run_scene_command(*scene);
-    if (app.got_subcommand("haptics-bench"))
-      return imasim::cli::run_haptics_bench_command(*haptics_bench);
+    return imasim::cli::run_chosen_command(app, commands);
   } catch (const std::exception& e) {
     std::cerr << "imasim: error: " << e.what() << '\n';
     return 2;
@@ -36,5 +25,4 @@ int main(int argc, char** argv) {
     std::cerr << "imasim: error: an unexpected failure (not a standard exception)\n";
     return 2;
   }
-  return 0;
 }

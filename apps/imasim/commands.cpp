@@ -1,0 +1,23 @@
+#include "commands.hpp"
+
+namespace imasim::cli {
+
+Commands add_commands(CLI::App& app) {
+  app.require_subcommand(1);
+  Commands c;
+  c.cloth = add_cloth_command(app);
+  c.run = add_run_command(app);
+  c.scene = add_scene_command(app);
+  c.haptics_bench = add_haptics_bench_command(app);
+  return c;
+}
+
+int run_chosen_command(const CLI::App& app, const Commands& c) {
+  if (app.got_subcommand("cloth")) return run_cloth_command(*c.cloth);
+  if (app.got_subcommand("run")) return run_run_command(*c.run);
+  if (app.got_subcommand("scene")) return run_scene_command(*c.scene);
+  if (app.got_subcommand("haptics-bench")) return run_haptics_bench_command(*c.haptics_bench);
+  return 0;
+}
+
+}  // namespace imasim::cli

@@ -1,0 +1,27 @@
+#pragma once
+// Every subcommand of `imasim`, registered in one place: main() and the command-line fuzz target
+// (fuzz/command_line_fuzz.cpp) parse exactly the same program.
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "cloth_command.hpp"
+#include "haptics_bench_command.hpp"
+#include "run_command.hpp"
+#include "scene_command.hpp"
+
+namespace imasim::cli {
+
+struct Commands {
+  std::shared_ptr<ClothOptions> cloth;
+  std::shared_ptr<RunOptions> run;
+  std::shared_ptr<SceneOptions> scene;
+  std::shared_ptr<HapticsBenchOptions> haptics_bench;
+};
+
+// Registers every subcommand on `app` (one is required).
+Commands add_commands(CLI::App& app);
+
+// Runs the subcommand the parsed command line chose; returns the process's exit code.
+int run_chosen_command(const CLI::App& app, const Commands& commands);
+
+}  // namespace imasim::cli
