@@ -71,7 +71,7 @@ fuzz: fuzz-build
 # and cuts on several threads (a full scene is too slow under TSan). oneTBB's scheduler is not
 # instrumented, so the false reports on its own internals are suppressed (scripts/tsan.supp);
 # our loop bodies are not.
-TSAN_TESTS = PinnedHash.Cloth*:ThoracicPatch.DeterministicAcrossThreadCounts:FasciaCut.CuttingIsDeterministic:ToolContact.CloudAroundTheForcepsIsDeterministic:LatestValue.*:HapticLoop.*:IgtlLink.*
+TSAN_TESTS = PinnedHash.Cloth*:ThoracicPatch.DeterministicAcrossThreadCounts:FasciaCut.CuttingIsDeterministic:ToolContact.CloudAroundTheForcepsIsDeterministic:LatestValue.*:HapticLoop.*:IgtlLink.*:LiveConsole.*
 tsan: deps
 	cmake -S . -B $(TSAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMASIM_WERROR=ON \
 	  -DIMASIM_TSAN=ON -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenigtlink-dev  # OpenIGTLink messages for devices (issue 13)
+  libsdl2-dev libspnav-dev  # gamepads and joysticks, 3D mice (issue 13)
 )
 
 missing=()

@@ -169,4 +169,66 @@ TEST(RunOutputs, ALongClothRunEndsCleanlyOnSigterm) {
   EXPECT_EQ(j["finite"], true);
 }
 
+// Live devices (issue 13): two emulated haptic devices drive the session over OpenIGTLink in real
+// time with the 1 kHz loop rendering forces; the run's recorded input stream replays to the
+// same state, bit for bit, on another thread count.
+TEST(RunDevices, AnEmulatedSessionReplaysToTheSameStateHash) {
+  const std::string stream = ::testing::TempDir() + "imasim_devices.stream";
+  const Finished live =
+      run("run --headless --devices emulator --script " + std::string(IMASIM_SOURCE_DIR) +
+          "/examples/open_fascia.script --seconds 1.5 --threads 1 --record-input " + stream +
+          " --json");
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  const auto a = nlohmann::json::parse(live.out);
+  EXPECT_EQ(a["status"], "ok");
+  EXPECT_EQ(a["input"], "emulator");
+  EXPECT_EQ(a["steps"], 300);
+  const auto& d = a["devices"];
+  EXPECT_NEAR(d["haptic_loop"]["rate_hz"].get<double>(), 1000, 50);
+  EXPECT_GT(d["models_rendered"].get<int>(), 250);  // the loop saw the steps' models
+  EXPECT_LE(d["force_max_n"].get<double>(), 3.3 + 1e-9);
+  EXPECT_EQ(d["safety"]["left"]["non_finite"], 0);
+  // The instruments followed the devices: the hook reached the fascia and cut it.
+  EXPECT_GT(a["fascia_edges_cut"].get<int>(), 0);
+
+  const Finished replay = run("run --headless --replay " + stream + " --threads 2 --json");
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  const auto b = nlohmann::json::parse(replay.out);
+  EXPECT_EQ(b["input"], "replay");
+  EXPECT_EQ(b["steps"], 300);
+  EXPECT_EQ(b["state_hash"], a["state_hash"]);
+  EXPECT_EQ(b["fascia_edges_cut"], a["fascia_edges_cut"]);
+}
+
+TEST(RunDevices, BadRequestsAreClearErrors) {
+  const Finished no_script = run("run --headless --devices emulator --seconds 1");
+  EXPECT_EQ(no_script.exit_code, 2);
+  EXPECT_NE(no_script.err.find("--devices emulator needs --script"), std::string::npos)
+      << no_script.err;
+  const Finished unknown = run("run --headless --devices telepathy");
+  EXPECT_NE(unknown.exit_code, 0);
+  EXPECT_NE(unknown.err.find("--devices"), std::string::npos) << unknown.err;
+  const std::string bad = ::testing::TempDir() + "imasim_bad.stream";
+  std::ofstream(bad) << "# a stream\n0 hand 0 0\n";
+  const Finished replay = run("run --headless --replay " + bad);
+  EXPECT_EQ(replay.exit_code, 2);
+  EXPECT_NE(replay.err.find(bad + ":2: missing position"), std::string::npos) << replay.err;
+  const Finished both = run("run --headless --replay " + bad + " --devices openigtlink");
+  EXPECT_EQ(both.exit_code, 2);
+  // Remote addresses are refused unless allowed.
+  const Finished remote =
+      run("run --headless --devices openigtlink --igtl-address 10.1.2.3 --seconds 0.1");
+  EXPECT_EQ(remote.exit_code, 2);
+  EXPECT_NE(remote.err.find("not a loopback address"), std::string::npos) << remote.err;
+  // A vendor adapter this build does not have says how to get it.
+  const Finished vendor = run("run --headless --devices force_dimension --seconds 0.1");
+  EXPECT_EQ(vendor.exit_code, 2);
+  EXPECT_NE(vendor.err.find("-DIMASIM_FORCE_DIMENSION=ON"), std::string::npos) << vendor.err;
+  // The emulator alone, with nobody to call.
+  const Finished alone = run("device-emulator --script " + std::string(IMASIM_SOURCE_DIR) +
+                             "/examples/open_fascia.script --port 1 --wait 0.2");
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.err.find("nobody answers at 127.0.0.1:1"), std::string::npos) << alone.err;
+}
+
 }  // namespace

@@ -368,4 +368,19 @@ TEST(HapticsBenchCommand, RefusesABadDuration) {
   }
 }
 
+TEST(DevicesCommand, ListsEveryKindWithItsMapping) {
+  const Outcome r = run_imasim("devices --json");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  std::vector<std::string> kinds;
+  for (const auto& d : j["devices"]) {
+    kinds.push_back(d["kind"]);
+    EXPECT_FALSE(d["mapping"].get<std::string>().empty());
+    EXPECT_FALSE(d["use"].get<std::string>().empty());
+  }
+  EXPECT_EQ(kinds, (std::vector<std::string>{"openigtlink", "gamepad", "spacemouse", "emulator",
+                                             "script"}));
+  EXPECT_EQ(j["devices"][0]["max_force_n"], 3.3);
+}
+
 }  // namespace

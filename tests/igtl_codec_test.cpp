@@ -179,5 +179,27 @@ TEST(IgtlCodec, BodiesShorterThanTheLibraryReadsAreRefused) {
   EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::bad_body)], 1u);
 }
 
+TEST(IgtlCodec, ToolPosesAndThePedalsPowerArriveAsSuch) {
+  IgtlDecoder d;
+  ConsoleInput in;
+  // A tracker on the hook sends its hinge in the scene frame.
+  ASSERT_TRUE(apply(d, {encode_pose("RightTool", turned_pose(Vec3(0.01, 0.02, 0.05)), 3.0)}, in));
+  EXPECT_EQ(in.right.frame, PoseFrame::tool);
+  EXPECT_TRUE(in.right.pose.translation.isApprox(Vec3(0.01, 0.02, 0.05), 1e-6));
+  ASSERT_TRUE(apply(d, {encode_pose("LeftHand", turned_pose(Vec3(0, 0, 0)), 3.0)}, in));
+  EXPECT_EQ(in.left.frame, PoseFrame::hand);
+  EXPECT_FALSE(in.left.has_buttons);
+  ASSERT_TRUE(apply(d, {encode_values("LeftButtons", {0, 0.5}, 3.0)}, in));
+  EXPECT_TRUE(in.left.has_buttons);
+  // [mode, power]: coagulation at 25 W; a power past the generator's 300 W is refused.
+  ASSERT_TRUE(apply(d, {encode_values("Pedal", {2, 25}, 3.0)}, in));
+  EXPECT_EQ(in.pedal, haptics::CauteryMode::coag);
+  EXPECT_EQ(in.power_w, 25);
+  EXPECT_FALSE(apply(d, {encode_values("Pedal", {1, 400}, 3.1)}, in));
+  EXPECT_FALSE(apply(d, {encode_values("Pedal", {1, 20, 3}, 3.2)}, in));
+  EXPECT_EQ(in.pedal, haptics::CauteryMode::coag);
+  EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::bad_values)], 2u);
+}
+
 }  // namespace
 }  // namespace imasim::devices

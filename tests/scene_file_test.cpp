@@ -6,6 +6,7 @@
 
 #include "physics/executor.hpp"
 #include "scene/scene_file.hpp"
+#include "session/surgical_session.hpp"
 
 namespace imasim::scene {
 namespace {
@@ -60,6 +61,14 @@ struct Broken {
 
 TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
   const Broken cases[] = {
+      {"[devices]\nleft_hand = \"Left Hand\"\n",
+       "bad.toml:2: key 'devices.left_hand': expected a name of 1 to 20 letters, digits, '.', '_' "
+       "or '-', got \"Left Hand\""},
+      {"[devices]\n\npedal = \"\"\n", "bad.toml:3: key 'devices.pedal': expected a name of 1"},
+      {"[devices]\nigtl_port = 70000\n",
+       "bad.toml:2: key 'devices.igtl_port': expected an integer in [0, 65535], got 70000"},
+      {"[force_ima]\nstiffness_n_per_m = -5\n",
+       "bad.toml:2: key 'force_ima.stiffness_n_per_m': expected a number in [0, 100000], got -5"},
       {"[heart]\nhart_rate_bpm = 80\n",
        "bad.toml:2: key 'heart.hart_rate_bpm': unknown key; did you mean 'heart.heart_rate_bpm'?"},
       {"[heart]\n\nejection_fraction = 1.5\n",
@@ -136,6 +145,20 @@ TEST(SceneFile, SuggestsByEditDistance) {
   EXPECT_EQ(edit_distance("heart", "hart"), 1u);
   EXPECT_EQ(edit_distance("fasica", "fascia"), 2u);
   EXPECT_EQ(edit_distance("", "abc"), 3u);
+}
+
+TEST(SceneFile, ConsoleSettingsReachTheSession) {
+  const ThoraxSceneParams p = parse_scene(
+      "[force_fascia]\nstiffness_n_per_m = 450\n[haptics]\nmotion_scale = 0.2\n"
+      "[devices]\nigtl_address = \"127.0.0.2\"\nright_tool = \"HookTracker\"\n",
+      "console.toml");
+  EXPECT_EQ(p.console.force[0].stiffness, 450);
+  EXPECT_EQ(p.console.igtl_address, "127.0.0.2");
+  EXPECT_EQ(p.console.right_tool, "HookTracker");
+  EXPECT_EQ(p.console.left_tool, "LeftTool");  // not given: the default
+  const session::SurgicalSession s = session::make_surgical_session(p, {});
+  EXPECT_EQ(s.stations[0].arm.motion_scale, Real(0.2));
+  EXPECT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::fascia)], 450);
 }
 
 }  // namespace

@@ -9,6 +9,8 @@ Commands add_commands(CLI::App& app) {
   c.run = add_run_command(app);
   c.scene = add_scene_command(app);
   c.haptics_bench = add_haptics_bench_command(app);
+  c.device_emulator = add_device_emulator_command(app);
+  c.devices = add_devices_command(app);
   return c;
 }
 
@@ -17,6 +19,8 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("run")) return run_run_command(*c.run);
   if (app.got_subcommand("scene")) return run_scene_command(*c.scene);
   if (app.got_subcommand("haptics-bench")) return run_haptics_bench_command(*c.haptics_bench);
+  if (app.got_subcommand("device-emulator")) return run_device_emulator_command(*c.device_emulator);
+  if (app.got_subcommand("devices")) return run_devices_command(*c.devices);
   return 0;
 }
 

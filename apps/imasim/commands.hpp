@@ -5,6 +5,8 @@
 #include <memory>
 
 #include "cloth_command.hpp"
+#include "device_emulator_command.hpp"
+#include "devices_command.hpp"
 #include "haptics_bench_command.hpp"
 #include "run_command.hpp"
 #include "scene_command.hpp"
@@ -16,6 +18,8 @@ struct Commands {
   std::shared_ptr<RunOptions> run;
   std::shared_ptr<SceneOptions> scene;
   std::shared_ptr<HapticsBenchOptions> haptics_bench;
+  std::shared_ptr<DeviceEmulatorOptions> device_emulator;
+  std::shared_ptr<DevicesOptions> devices;
 };
 
 // Registers every subcommand on `app` (one is required).

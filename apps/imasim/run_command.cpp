@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "cli_checks.hpp"
+#include "console/input_stream.hpp"
 #include "interrupt.hpp"
+#include "live_inputs.hpp"
 #include "math/state_hash.hpp"
 #include "metrics/event_csv.hpp"
 #include "report.hpp"
@@ -77,6 +79,30 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
+  cmd->add_option("--devices", opt->devices,
+                  "Input: script (the --script file), openigtlink (live devices, real time, "
+                  "1 kHz force feedback), emulator (two emulated haptic devices playing "
+                  "--script over OpenIGTLink), gamepad (SDL2), spacemouse (spacenavd), "
+                  "openhaptics or force_dimension (vendor SDKs, when built with them); "
+                  "`imasim devices` lists them")
+      ->check(CLI::IsMember({"script", "openigtlink", "emulator", "gamepad", "spacemouse",
+                             "openhaptics", "force_dimension"}));
+  cmd->add_option("--replay", opt->replay_file,
+                  "Replay a recorded input stream (--record-input) step by step")
+      ->check(non_empty());
+  cmd->add_option("--record-input", opt->record_input_file,
+                  "Write every step's input here (replayable with --replay)")
+      ->check(non_empty());
+  cmd->add_option("--igtl-address", opt->igtl_address,
+                  "OpenIGTLink: where to listen, or with --igtl-client whom to call; default: "
+                  "the scene's devices.igtl_address (loopback only unless the scene file allows "
+                  "more)")
+      ->check(non_empty());
+  cmd->add_option("--igtl-port", opt->igtl_port,
+                  "OpenIGTLink port (0: any free); default: the scene's devices.igtl_port")
+      ->check(CLI::Range(0, 65535));
+  cmd->add_flag("--igtl-client", opt->igtl_client,
+                "OpenIGTLink: call a tracker's server instead of listening");
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
   cmd->add_flag("--progress", opt->progress,
                 "Report the simulated time on stderr every few seconds (always on a terminal)");
@@ -123,19 +149,61 @@ int run_run_command(const RunOptions& o) {
       return 2;
     }
   }
+  const std::string devices = !o.devices.empty() ? o.devices : script ? "script" : "";
+  const bool live = !devices.empty() && devices != "script";
+  if (!o.replay_file.empty() && (script || !o.devices.empty())) {
+    std::cerr << "imasim run: --replay plays a recorded stream; it takes no --script or "
+                 "--devices\n";
+    return 2;
+  }
+  if ((devices == "script" || devices == "emulator") && !script) {
+    std::cerr << "imasim run: --devices " << devices << " needs --script (the path to play)\n";
+    return 2;
+  }
+  if (live && devices != "emulator" && script) {
+    std::cerr << "imasim run: --devices " << devices
+              << " takes its input from the devices, not --script\n";
+    return 2;
+  }
+  std::optional<std::vector<session::SessionInput>> replay;
+  if (!o.replay_file.empty()) {
+    try {
+      replay = console::load_input_stream(o.replay_file);
+    } catch (const console::InputStreamError& e) {
+      std::cerr << e.what() << '\n';
+      return 2;
+    }
+  }
+  const bool instruments = script || replay || live;
   if (o.repeat > 1 && !script) {
     std::cerr << "imasim run: --repeat needs --script (it repeats the script)\n";
     return 2;
   }
   std::optional<metrics::EventCsvWriter> events_out;
   if (!o.events_file.empty()) {
-    if (!script) {
-      std::cerr << "imasim run: --events needs --script (events come from the instruments)\n";
+    if (!instruments) {
+      std::cerr << "imasim run: --events needs instruments (--script, --devices or --replay)\n";
       return 2;
     }
     try {
-      const std::string inputs[] = {o.scene_file, o.script_file};
+      const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file};
       events_out.emplace(metrics::OutputFile(o.events_file, "the events file", inputs));
+    } catch (const metrics::OutputError& e) {
+      std::cerr << "imasim run: " << e.what() << '\n';
+      return 2;
+    }
+  }
+  std::optional<metrics::OutputFile> record_out;
+  if (!o.record_input_file.empty()) {
+    if (!instruments) {
+      std::cerr << "imasim run: --record-input needs instruments (--script, --devices or "
+                   "--replay)\n";
+      return 2;
+    }
+    try {
+      const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, o.events_file};
+      record_out.emplace(o.record_input_file, "the input stream", inputs);
+      record_out->write("# imasim input stream v1: one line a 5 ms step (docs/haptics.md)\n");
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
@@ -144,7 +212,7 @@ int run_run_command(const RunOptions& o) {
   std::optional<session::SurgicalSession> surgical;
   scene::ThoraxScene plain;
   try {
-    if (script) {
+    if (instruments) {
       surgical = session::make_surgical_session(params, session::SessionParams{});
     } else {
       plain = scene::make_thorax_scene(params);
@@ -161,8 +229,30 @@ int run_run_command(const RunOptions& o) {
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
 
   double seconds = o.seconds;
-  if (script && o.seconds_option && o.seconds_option->count() == 0) {
-    seconds = script->end_time() + 0.5;
+  const bool seconds_given = o.seconds_option && o.seconds_option->count() > 0;
+  if (script && !seconds_given) seconds = script->end_time() + 0.5;
+  if (replay) {
+    const double recorded = double(replay->size()) * double(w.model.solver.dt);
+    seconds = seconds_given ? std::min(seconds, recorded) : recorded;
+  }
+  std::unique_ptr<LiveInputs> live_inputs;
+  if (live) {
+    LiveInputOptions lo;
+    lo.devices = devices;
+    lo.script_file = o.script_file;
+    lo.scene_file = o.scene_file;
+    lo.settings = params.console;
+    lo.address = o.igtl_address;
+    lo.port = o.igtl_port;
+    if (devices == "emulator" && !o.igtl_port) lo.port = 0;  // any free port, told to the child
+    lo.client = o.igtl_client;
+    lo.seconds = seconds + 1;
+    try {
+      live_inputs = std::make_unique<LiveInputs>(lo);
+    } catch (const std::exception& e) {
+      std::cerr << "imasim run: " << e.what() << '\n';
+      return 2;
+    }
   }
   // Each step keeps its time for the median: bounded, so that a tiny solver.dt_s cannot ask for
   // more than memory holds.
@@ -196,10 +286,24 @@ int run_run_command(const RunOptions& o) {
   RunProgress progress("imasim run", seconds, double(w.model.solver.dt), o.progress, std::cerr);
   for (; done < steps && interrupt_signal() == 0; ++done) {
     const auto t0 = std::chrono::steady_clock::now();
-    const physics::StepResult r =
-        surgical
-            ? session::step_session(*surgical, session::sample_script(*script, w.state.time), exec)
-            : scene::step_thorax_scene(scene, exec);
+    session::SessionInput input;
+    if (live_inputs)
+      input = live_inputs->next(*surgical);
+    else if (replay)
+      input = (*replay)[done];
+    else if (script)
+      input = session::sample_script(*script, w.state.time);
+    if (record_out) {
+      try {
+        record_out->write(console::format_input_line(done, input) + '\n');
+        record_out->flush_if_due();
+      } catch (const metrics::OutputError& e) {
+        output_failure = e.what();
+        break;
+      }
+    }
+    const physics::StepResult r = surgical ? session::step_session(*surgical, input, exec)
+                                           : scene::step_thorax_scene(scene, exec);
     step_ms.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (!r.ok()) {
@@ -225,8 +329,18 @@ int run_run_command(const RunOptions& o) {
       }
     }
     progress.update(w.state.time);
+    if (live_inputs) live_inputs->after_step(*surgical, done + 1, double(w.model.solver.dt));
   }
   progress.finish();
+  nlohmann::ordered_json device_report;
+  if (live_inputs) device_report = live_inputs->finish();
+  if (record_out && !output_failure) {
+    try {
+      record_out->close();
+    } catch (const metrics::OutputError& e) {
+      output_failure = e.what();
+    }
+  }
   // Whatever ended the run, the events recorded so far reach the file.
   if (events_out && !output_failure) {
     try {
@@ -272,7 +386,11 @@ int run_run_command(const RunOptions& o) {
   out["kinetic_energy_j"] = physics::kinetic_energy(w.state.particles);
   out["state_hash"] = to_hex(physics::position_hash(w.state));
   if (surgical) {
+    out["input"] = replay ? "replay" : devices;
     out["script"] = o.script_file;
+    if (replay) out["replay"] = o.replay_file;
+    if (record_out) out["input_recorded"] = o.record_input_file;
+    if (live_inputs) out["devices"] = device_report;
     add_session_report(out, *surgical);
     if (events_out) out["events_written"] = events_out->written();
   }

@@ -25,6 +25,14 @@ struct RunOptions {
   std::string script_file;   // empty: no instruments; else a surgical session driven by it
   std::uint32_t repeat = 1;  // plays of the script in a row
   std::string events_file;   // empty: events only counted; else written there as CSV
+  // Where the instruments' input comes from (live_inputs.hpp): "" (the script if any),
+  // "script", "openigtlink" or "emulator"; or a recorded stream to replay.
+  std::string devices;
+  std::string replay_file;
+  std::string record_input_file;  // empty: not recorded; else every step's input written there
+  std::optional<std::string> igtl_address;  // unset: the scene file's (devices.igtl_address)
+  std::optional<std::uint16_t> igtl_port;   // unset: the scene file's (devices.igtl_port)
+  bool igtl_client = false;
   CLI::Option* seconds_option = nullptr;  // given on the command line?
 };
 

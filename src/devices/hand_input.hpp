@@ -10,11 +10,17 @@ namespace imasim::devices {
 
 enum class Hand : std::uint8_t { left, right };
 
+// What a pose is: the console hand (moved through the arm's motion scaling, clutch and remote
+// centre of motion) or the instrument's hinge in the scene frame (a tracker on a tool).
+enum class PoseFrame : std::uint8_t { hand, tool };
+
 struct HandInput {
-  Pose pose;                     // (unit: m)
+  Pose pose;  // (unit: m)
+  PoseFrame frame = PoseFrame::hand;
   Vec3 velocity = Vec3::Zero();  // (unit: m/s)
   double time_s = 0;             // the device's time stamp of the pose (unit: s)
   bool has_pose = false;         // false until the first pose arrives
+  bool has_buttons = false;      // false until the first clutch and jaw values arrive
   bool clutch = false;           // true = engaged (the hand moves without the instrument)
   Real jaw = 0;                  // 0 open .. 1 closed
 };
@@ -22,6 +28,7 @@ struct HandInput {
 struct ConsoleInput {
   HandInput left, right;
   haptics::CauteryMode pedal = haptics::CauteryMode::off;
+  Real power_w = 40;  // the generator's setting (unit: W)
 
   HandInput& hand(Hand h) { return h == Hand::left ? left : right; }
 };

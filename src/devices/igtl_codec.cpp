@@ -1,5 +1,7 @@
 #include "devices/igtl_codec.hpp"
 
+#include <Eigen/Geometry>
+
 #include <igtlMessageHeader.h>
 #include <igtlSensorMessage.h>
 #include <igtlTransformMessage.h>
@@ -21,7 +23,17 @@ constexpr Real kRotationTolerance = Real(1e-3);
 // The largest hand position accepted (unit: m): a console's workspace is tens of centimetres.
 constexpr Real kMaxHandPosition = 2;
 
-enum DeviceSlot : std::size_t { kLeftPose, kRightPose, kLeftButtons, kRightButtons, kPedal };
+enum DeviceSlot : std::size_t {
+  kLeftPose,
+  kRightPose,
+  kLeftButtons,
+  kRightButtons,
+  kPedal,
+  kLeftTool,
+  kRightTool
+};
+// The electrosurgical generator's range (unit: W).
+constexpr double kMaxPowerW = 300;
 
 double stamp_seconds(igtl::MessageBase& m) {
   unsigned int sec = 0, frac = 0;
@@ -140,6 +152,10 @@ bool IgtlDecoder::later_than_last(const std::string& device, double time_s) {
     slot = kLeftPose;
   else if (device == names_.right_pose)
     slot = kRightPose;
+  else if (device == names_.left_tool)
+    slot = kLeftTool;
+  else if (device == names_.right_tool)
+    slot = kRightTool;
   else if (device == names_.left_buttons)
     slot = kLeftButtons;
   else if (device == names_.right_buttons)
@@ -158,7 +174,8 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
   if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body);
   const igtl::MessageHeader::Pointer h = unpack_header(header);
   const std::string& device = head->device;
-  const bool pose = device == names_.left_pose || device == names_.right_pose;
+  const bool tool = device == names_.left_tool || device == names_.right_tool;
+  const bool pose = tool || device == names_.left_pose || device == names_.right_pose;
   const bool buttons = device == names_.left_buttons || device == names_.right_buttons;
   const bool pedal = device == names_.pedal;
   if (head->type == "TRANSFORM") {
@@ -188,12 +205,17 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
       return refuse(IgtlRefusal::bad_values);
     }
     if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
-    HandInput& hand = input.hand(device == names_.left_pose ? Hand::left : Hand::right);
-    if (hand.has_pose && head->time_s > hand.time_s) {
+    const bool left = device == names_.left_pose || device == names_.left_tool;
+    HandInput& hand = input.hand(left ? Hand::left : Hand::right);
+    const PoseFrame frame = tool ? PoseFrame::tool : PoseFrame::hand;
+    if (hand.has_pose && hand.frame == frame && head->time_s > hand.time_s) {
       hand.velocity = (p - hand.pose.translation) / Real(head->time_s - hand.time_s);
     }
-    hand.pose.rotation = r;
+    // Re-orthonormalised: the wire's floats leave a rotation up to the tolerance off, and what
+    // reaches the physics (and a recorded stream) is an exact one.
+    hand.pose.rotation = Eigen::Quaternion<Real>(r).normalized().toRotationMatrix();
     hand.pose.translation = p;
+    hand.frame = frame;
     hand.time_s = head->time_s;
     hand.has_pose = true;
     ++counters_.accepted;
@@ -211,13 +233,16 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
         return refuse(IgtlRefusal::bad_values);
       if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
       HandInput& hand = input.hand(device == names_.left_buttons ? Hand::left : Hand::right);
+      hand.has_buttons = true;
       hand.clutch = v[0] == 1;
       hand.jaw = Real(v[1]);
     } else {
-      if (v.size() != 1 || (v[0] != 0 && v[0] != 1 && v[0] != 2))
+      if (v.empty() || v.size() > 2 || (v[0] != 0 && v[0] != 1 && v[0] != 2) ||
+          (v.size() == 2 && !(v[1] >= 0 && v[1] <= kMaxPowerW)))
         return refuse(IgtlRefusal::bad_values);
       if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
       input.pedal = static_cast<haptics::CauteryMode>(int(v[0]));
+      if (v.size() == 2) input.power_w = Real(v[1]);
     }
     ++counters_.accepted;
     return true;

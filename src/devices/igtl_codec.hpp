@@ -4,7 +4,8 @@
 //   in:  TRANSFORM per hand (device names mapped in the scene file), in millimetres as the
 //        protocol's users send them, converted to metres here, at the edge;
 //        SENSOR "<hand> buttons": [clutch (0/1), jaw (0 open .. 1 closed)];
-//        SENSOR "pedal": [mode (0 off, 1 cut, 2 coag)];
+//        TRANSFORM per tool instead (a tracker on the instrument): its hinge in the scene frame;
+//        SENSOR "pedal": [mode (0 off, 1 cut, 2 coag)] or [mode, power (W, 0 .. 300)];
 //   out: SENSOR "<hand> force": [Fx, Fy, Fz] in newtons, in the scene frame.
 // Every message is checked before use: its header, its CRC, a body no larger than the type
 // needs, a known type and device name, finite values, a rotation that is one, a time stamp
@@ -27,6 +28,7 @@ inline constexpr std::size_t kIgtlMaxBodyBytes = 2048;
 
 struct IgtlNames {
   std::string left_pose = "LeftHand", right_pose = "RightHand";
+  std::string left_tool = "LeftTool", right_tool = "RightTool";  // tool poses (scene frame)
   std::string left_buttons = "LeftButtons", right_buttons = "RightButtons";
   std::string pedal = "Pedal";
   std::string left_force = "LeftForce", right_force = "RightForce";
@@ -78,7 +80,7 @@ class IgtlDecoder {
 
   IgtlNames names_;
   IgtlCounters counters_;
-  std::array<double, 5> last_time_s_;  // per mapped device: left/right pose, buttons, pedal
+  std::array<double, 7> last_time_s_;  // per mapped device: poses, tools, buttons, pedal
 };
 
 // The values of a whole SENSOR message (checked as apply checks it), or empty: for a device's

@@ -16,6 +16,14 @@ void clamp_channel(Vec3& force, Real& magnitude, Real bound) {
 
 }  // namespace
 
+DeviceTip device_in_scene(const LocalModel& m, const Vec3& hand_position,
+                          const Vec3& hand_velocity) {
+  DeviceTip tip;
+  tip.position = m.tool_anchor + m.motion_scale * (hand_position - m.hand_anchor);
+  tip.velocity = m.motion_scale * hand_velocity;
+  return tip;
+}
+
 ForceChannels evaluate_local_model(const LocalModel& model, const ForceModelParams& params,
                                    const DeviceTip& tip, double now_s) {
   ForceChannels sum;
@@ -28,7 +36,7 @@ ForceChannels evaluate_local_model(const LocalModel& model, const ForceModelPara
     const Vec3 point = c.point + elapsed * c.surface_velocity;
     ContactKinematics kin;
     kin.normal = c.normal;
-    kin.depth = (point - tip.position).dot(c.normal);
+    kin.depth = (point - (tip.position + c.lever)).dot(c.normal);
     kin.relative_velocity = tip.velocity - c.surface_velocity;
     const ThermalForceParams* thermal = params.thermal_of(c.tissue, model.cautery);
     const ForceChannels f = contact_force(params.of(c.tissue), thermal, model.power_w, kin);

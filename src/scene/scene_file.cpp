@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -257,6 +258,19 @@ struct Reader {
             if (std::find(key.choices.begin(), key.choices.end(), *v) == key.choices.end())
               return error(n, path, "expected " + words + ", got " + string_text(*v));
             *ref(params) = *v;
+          } else if constexpr (std::is_same_v<Ref, NameKeyRef>) {
+            const auto v = n.value<std::string>();
+            const std::string rule = "a name of " + std::to_string(int(key.min)) + " to " +
+                                     std::to_string(int(key.max)) +
+                                     " letters, digits, '.', '_' or '-'";
+            if (!n.is_string() || !v) return error(n, path, "expected " + rule);
+            const bool allowed = std::all_of(v->begin(), v->end(), [](char c) {
+              return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' ||
+                     c == '-';
+            });
+            if (!allowed || double(v->size()) < key.min || double(v->size()) > key.max)
+              return error(n, path, "expected " + rule + ", got " + string_text(*v));
+            *ref.get(params) = *v;
           } else {
             const toml::array* a = n.as_array();
             if (a == nullptr) return error(n, path, "expected an array of file names");
@@ -406,6 +420,8 @@ std::string print_scene(const ThoraxSceneParams& const_params) {
               out << vec3_text(*ref(params));
             } else if constexpr (std::is_same_v<Ref, ChoiceRef>) {
               out << string_text(*ref(params));
+            } else if constexpr (std::is_same_v<Ref, NameKeyRef>) {
+              out << string_text(*ref.get(params));
             } else {
               out << "[";
               const std::vector<std::string>& paths = *ref(params);

@@ -57,6 +57,39 @@ constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, k
         "XSPH neighbourhood radius at rest"                                                       \
   }
 
+// The force model's keys of one tissue (eq. 17-19; docs/haptics.md), table force_<tissue>.
+#define IMASIM_FORCE_KEYS(table, i)                                                              \
+  SceneKey{table ".stiffness_n_per_m",                                                           \
+           RealRef([](P& p) { return &p.console.force[i].stiffness; }), 0, 1e5,                  \
+           "k_d of eq. 17, also the tool proxy's coupling to this tissue"},                      \
+      SceneKey{table ".damping_n_s_per_m",                                                       \
+               RealRef([](P& p) { return &p.console.force[i].damping; }), 0, 1e3,                \
+               "c_d of eq. 17"},                                                                 \
+      SceneKey{table ".friction", RealRef([](P& p) { return &p.console.force[i].friction; }), 0, \
+               2, "mu of eq. 18"},                                                               \
+      SceneKey{table ".cutting_resistance_n_s_per_m",                                            \
+               RealRef([](P& p) { return &p.console.force[i].cutting_resistance; }), 0, 1e3,     \
+               "k_c of eq. 18"},                                                                 \
+      SceneKey{table ".cut_thermal_n_per_w",                                                     \
+               RealRef([](P& p) { return &p.console.force[i].cut_coefficient; }), 0, 1,          \
+               "k_t of eq. 19 in cut mode"},                                                     \
+      SceneKey{table ".cut_thermal_decay_per_m",                                                 \
+               RealRef([](P& p) { return &p.console.force[i].cut_decay; }), 0, 1e5,              \
+               "alpha of eq. 19 in cut mode"},                                                   \
+      SceneKey{table ".coag_thermal_n_per_w",                                                    \
+               RealRef([](P& p) { return &p.console.force[i].coag_coefficient; }), 0, 1,         \
+               "k_t of eq. 19 in coagulation mode"},                                             \
+      SceneKey {                                                                                 \
+    table ".coag_thermal_decay_per_m",                                                           \
+        RealRef([](P& p) { return &p.console.force[i].coag_decay; }), 0, 1e5,                    \
+        "alpha of eq. 19 in coagulation mode"                                                    \
+  }
+
+#define IMASIM_NAME_KEY(key, member, doc)                                          \
+  SceneKey {                                                                       \
+    "devices." key, NameKeyRef{[](P& p) { return &p.console.member; }}, 1, 20, doc \
+  }
+
 const SceneKey kKeys[] = {
     {"anatomy.patient_seed", SeedRef([](P& p) { return &p.anatomy.patient_seed; }), 0, 9e18,
      "0 = the typical patient below; else a virtual patient varied about it (docs/anatomy.md)"},
@@ -214,13 +247,52 @@ const SceneKey kKeys[] = {
      "right instrument port"},
     {"ports.assistant_m", Vec3Ref([](P& p) { return &p.ports[3].position; }), -kRoom, kRoom,
      "assistant port"},
+    IMASIM_FORCE_KEYS("force_fascia", 0),
+    IMASIM_FORCE_KEYS("force_fat", 1),
+    IMASIM_FORCE_KEYS("force_ima", 2),
+    IMASIM_FORCE_KEYS("force_heart", 3),
+    IMASIM_FORCE_KEYS("force_chest_wall", 4),
+
+    {"haptics.device_max_force_n", RealRef([](P& p) { return &p.console.device_max_force; }), 0, 40,
+     "the force a hand's device renders at most (desktop devices: 3.3 N)"},
+    {"haptics.max_force_rate_n_per_s", RealRef([](P& p) { return &p.console.max_force_rate; }), 1,
+     1e5, "the fastest change of a commanded force"},
+    {"haptics.ramp_s", RealRef([](P& p) { return &p.console.ramp_s; }), 0, 10,
+     "force ramp-in after start and after each clutch release"},
+    {"haptics.stale_after_s", RealRef([](P& p) { return &p.console.stale_after_s; }), 0.005, 1,
+     "a local model older than this fades the force out (watchdog)"},
+    {"haptics.fade_s", RealRef([](P& p) { return &p.console.fade_s; }), 0, 1,
+     "the watchdog's fade to zero"},
+    {"haptics.motion_scale", RealRef([](P& p) { return &p.console.motion_scale; }), 0.05, 2,
+     "instrument motion per hand motion (robotic consoles: 1/3)"},
+    {"haptics.tremor_cutoff_hz", RealRef([](P& p) { return &p.console.tremor_cutoff_hz; }), 0, 100,
+     "low-pass on the hands' positions (0: off; tremor is 8-12 Hz)"},
+
+    IMASIM_NAME_KEY("igtl_address", igtl_address,
+                    "OpenIGTLink: where to listen, or the tracker's server to call (IPv4)"),
+    {"devices.igtl_port", CountRef([](P& p) { return &p.console.igtl_port; }), 0, 65535,
+     "OpenIGTLink port (the protocol's is 18944; 0: any free)"},
+    {"devices.igtl_allow_remote", BoolRef([](P& p) { return &p.console.igtl_allow_remote; }), 0, 0,
+     "accept an address off this machine (false: loopback only)"},
+    IMASIM_NAME_KEY("left_hand", left_hand, "TRANSFORM name of the left hand's pose (mm)"),
+    IMASIM_NAME_KEY("right_hand", right_hand, "TRANSFORM name of the right hand's pose (mm)"),
+    IMASIM_NAME_KEY("left_tool", left_tool, "TRANSFORM name of a tracked left instrument (mm)"),
+    IMASIM_NAME_KEY("right_tool", right_tool, "TRANSFORM name of a tracked right instrument (mm)"),
+    IMASIM_NAME_KEY("left_buttons", left_buttons, "SENSOR name of [clutch, jaw] of the left hand"),
+    IMASIM_NAME_KEY("right_buttons", right_buttons,
+                    "SENSOR name of [clutch, jaw] of the right hand"),
+    IMASIM_NAME_KEY("pedal", pedal, "SENSOR name of [mode, power W] of the foot pedal"),
+    IMASIM_NAME_KEY("left_force", left_force, "SENSOR name of the left hand's force out (N)"),
+    IMASIM_NAME_KEY("right_force", right_force, "SENSOR name of the right hand's force out (N)"),
 };
 
 #undef IMASIM_STRAND_KEYS
 
-constexpr std::array<std::string_view, 10> kTables = {"anatomy",  "solver", "heart",   "chest_wall",
-                                                      "fascia",   "vessel", "ima_fat", "fascia_fat",
-                                                      "coupling", "ports"};
+constexpr std::array<std::string_view, 17> kTables = {
+    "anatomy",      "solver",    "heart",      "chest_wall",  "fascia",
+    "vessel",       "ima_fat",   "fascia_fat", "coupling",    "ports",
+    "force_fascia", "force_fat", "force_ima",  "force_heart", "force_chest_wall",
+    "haptics",      "devices"};
 
 }  // namespace
 

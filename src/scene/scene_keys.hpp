@@ -20,10 +20,17 @@ using BoolRef = bool* (*)(ThoraxSceneParams&);
 using Vec3Ref = Vec3* (*)(ThoraxSceneParams&);
 using PathListRef = std::vector<std::string>* (*)(ThoraxSceneParams&);  // file paths
 using ChoiceRef = std::string* (*)(ThoraxSceneParams&);  // one of the key's `choices`
+// A name (an OpenIGTLink device name, an IPv4 address): letters, digits and . _ -, of a length
+// in [min, max].
+using NameRef = std::string* (*)(ThoraxSceneParams&);
+struct NameKeyRef {
+  NameRef get;
+};
 
 struct SceneKey {
   std::string_view path;  // "table.key"
-  std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PathListRef, ChoiceRef> ref;
+  std::variant<RealRef, CountRef, SeedRef, BoolRef, Vec3Ref, PathListRef, ChoiceRef, NameKeyRef>
+      ref;
   double min = 0, max = 0;  // inclusive range for numbers and each component of a vector
   std::string_view doc;
   std::span<const std::string_view> choices = {};  // the words a ChoiceRef key accepts

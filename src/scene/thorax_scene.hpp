@@ -11,6 +11,7 @@
 #include "physics/step.hpp"
 #include "scene/anatomy.hpp"
 #include "scene/chest_skeleton.hpp"
+#include "scene/console_settings.hpp"
 #include "scene/heart_series.hpp"
 #include "scene/ports.hpp"
 #include "tissue/heart_field.hpp"
@@ -34,6 +35,7 @@ struct ThoraxSceneParams {
   tissue::HeartPlayback playback;
   std::vector<Port> ports;          // camera, left and right instrument, assistant
   Vec3 port_target = Vec3::Zero();  // where the ports aim (unit: m)
+  ConsoleSettings console = default_console_settings();  // forces, safety, devices
 };
 
 ThoraxSceneParams default_thorax_scene_params();

@@ -1,6 +1,7 @@
 #include "session/surgical_session.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "math/stopwatch.hpp"
@@ -51,6 +52,44 @@ bool inside_cavity(const geometry::CylinderPatchSpec& wall, const Vec3& x, Real 
   return (r - r.dot(axis) * axis).norm() < wall.radius - clearance;
 }
 
+// Where a stopped instrument rests against the heart (if `heart`) or else the chest wall: its
+// probe point nearest that surface and the surface's outward normal there (the heart's from
+// central differences of its signed distance, the wall's towards the cavity's axis).
+SurfaceStop surface_stop(SurgicalSession& s, const Station& st, bool heart) {
+  SurfaceStop stop;
+  stop.tissue = heart ? Tissue::heart : Tissue::chest_wall;
+  const geometry::CylinderPatchSpec& wall = s.scene.layout.wall;
+  const Vec3 axis = wall.axis.normalized();
+  auto radial = [&](const Vec3& x) {
+    const Vec3 r = x - wall.origin;
+    return Vec3(r - r.dot(axis) * axis);
+  };
+  auto clearance = [&](const Vec3& x) {
+    return heart ? tissue::heart_signed_distance(s.scene.heart, x, Real(0.01))
+                 : wall.radius - radial(x).norm();
+  };
+  Real best = std::numeric_limits<Real>::max();
+  for (const Vec3& x : probe_points(st, s.params.cautery.electrode_length)) {
+    const Real c = clearance(x);
+    if (c < best) {
+      best = c;
+      stop.point = x;
+    }
+  }
+  Vec3 n = Vec3::Zero();
+  if (heart) {
+    constexpr Real e = Real(2e-4);  // (unit: m)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 step = e * Vec3::Unit(k);
+      n[k] = clearance(stop.point + step) - clearance(stop.point - step);
+    }
+  } else {
+    n = -radial(stop.point);
+  }
+  if (n.norm() > 0) stop.normal = n.normalized();
+  return stop;
+}
+
 void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput& in) {
   st.previous_pose = st.pose;
   st.previous_controller = st.state.controller;
@@ -65,7 +104,12 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
     case surgery::PoseSource::none:
       break;
   }
-  st.state.controller = st.arm_state.tool;
+  if (in.source != surgery::PoseSource::none) st.source = in.source;
+  // The proxy: the device pose moved by the coupling's offset (tool_proxy.hpp).
+  st.device = st.arm_state.tool;
+  Pose proxy = st.device;
+  proxy.translation += st.proxy.offset;
+  st.state.controller = surgery::constrain_to_port(st.arm, proxy);
   surgery::integrate_jaws(st.instrument.jaws, in.jaw, s.scene.patch.world.model.solver.dt,
                           st.state);
   st.pose = surgery::world_pose(st.instrument, st.state);
@@ -84,6 +128,7 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
   };
   bool heart = false, wall = false;
   st.blocked_by_heart = st.blocked_by_wall = false;
+  st.stop = SurfaceStop{};
   if (!blocked(heart, wall)) return;
   st.blocked_by_heart = heart;
   st.blocked_by_wall = wall;
@@ -93,9 +138,12 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
   st.pose = surgery::world_pose(st.instrument, st.state);
   if (!blocked(heart, wall)) {
     st.arm_state.tool = st.state.controller;
+    st.stop = surface_stop(s, st, heart);
     return;
   }
-  // ... unless the heart moved into it: then it gives way along its shaft.
+  // ... unless the heart moved into it: then it gives way along its shaft, as far as the heart
+  // needs (the wall, around the port, does not count here: near the port every insertion is
+  // close to it, and counting it would draw the instrument back to the port).
   st.state.controller = commanded;
   const Vec3 port = st.arm.port, hinge = st.state.controller.translation;
   const Vec3 axis = (hinge - port).normalized();
@@ -105,11 +153,13 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
     st.state.controller.translation = port + mid * axis;
     st.pose = surgery::world_pose(st.instrument, st.state);
     bool h = false, w = false;
-    (blocked(h, w) ? unsafe : safe) = mid;
+    blocked(h, w);
+    ((heart ? h : w) ? unsafe : safe) = mid;
   }
   st.state.controller.translation = port + safe * axis;
   st.arm_state.tool = st.state.controller;
   st.pose = surgery::world_pose(st.instrument, st.state);
+  st.stop = surface_stop(s, st, heart);
 }
 
 void build_geometry(SurgicalSession& s, Station& st, bool holding) {
@@ -183,6 +233,13 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
   s.cutter = surgery::make_fascia_cutter(patch.fascia);
   tissue::finish_setup(w);
 
+  // The scene file's console settings: the hands' motion scaling and the proxy's coupling to
+  // each tissue (eq. 17's k_d, in the force model's order of kForceTissueNames).
+  const scene::ConsoleSettings& console = scene_params.console;
+  const Tissue force_order[5] = {Tissue::fascia, Tissue::fat, Tissue::ima, Tissue::heart,
+                                 Tissue::chest_wall};
+  for (std::size_t k = 0; k < 5; ++k)
+    s.params.proxy.stiffness[std::size_t(force_order[k])] = console.force[k].stiffness;
   const char* names[2] = {"left_instrument", "right_instrument"};
   for (int k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
@@ -190,12 +247,13 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
         k == 0 ? surgery::InstrumentKind::forceps : surgery::InstrumentKind::cautery_hook;
     const scene::Port& port = find_port(s.scene.ports, names[k]);
     st.arm.port = port.position;
+    st.arm.motion_scale = console.motion_scale;
     const Vec3 target = scene_params.port_target;
     Pose start;
     start.translation = port.position + params.start_fraction * (target - port.position);
     start.rotation = frame_along((target - port.position).normalized());
     st.arm_state = surgery::make_arm_state(st.arm, start, Pose{});
-    st.state.controller = st.arm_state.tool;
+    st.state.controller = st.device = st.arm_state.tool;
     st.state.jaw_angle = 0;
     st.state.closed = true;
     st.pose = st.previous_pose = surgery::world_pose(st.instrument, st.state);
@@ -261,6 +319,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   }
   surgery::CauteryParams cautery = s.params.cautery;
   cautery.power = input.right.power;
+  hook.power_w = pedal == surgery::PedalMode::off ? Real(0) : cautery.power;
   const std::array<Vec3, 2> e = electrode(s);
   const surgery::CauteryStep heat =
       surgery::apply_cautery(w, cautery, pedal, e[0], e[1], dt, s.cautery);
@@ -328,6 +387,11 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
         surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
                                        st.geometry, s.params.contact, dt, s.contacts);
     s.missed_tool_contacts += missed.inside;  // within the margin only is not a miss
+    surgery::Tissue pressed = surgery::Tissue::none;
+    const Vec3 force = surgery::tissue_force_on_tool(
+        w.state.contacts, w.state.particles.object.data(), s.object_tissue.data(),
+        s.object_tissue.size(), kToolContactTag + k, dt, pressed);
+    surgery::update_proxy(s.params.proxy, force, pressed, st.proxy);
     moved = moved || missed.count > 0;
     record_contacts(s, k, st, time);
   }

@@ -27,6 +27,7 @@
 #include "surgery/robotic_arm.hpp"
 #include "surgery/strand_cut.hpp"
 #include "surgery/tool_contact.hpp"
+#include "surgery/tool_proxy.hpp"
 
 namespace imasim::session {
 
@@ -42,6 +43,15 @@ struct SessionParams {
   Real tool_clearance = Real(0.0005);    // kept from the heart and the wall (unit: m)
   // Where each instrument starts: this fraction of the way from its port to the port target.
   Real start_fraction = Real(0.75);
+  surgery::ProxyParams proxy;
+};
+
+// Where the heart or the chest wall stopped an instrument this step (the god-object stop): the
+// stopped probe point, the surface's outward normal there, and which one.
+struct SurfaceStop {
+  surgery::Tissue tissue = surgery::Tissue::none;  // none: not stopped
+  Vec3 point = Vec3::Zero();                       // (unit: m)
+  Vec3 normal = Vec3::UnitZ();
 };
 
 // One instrument at its port.
@@ -53,11 +63,18 @@ struct Station {
   Pose pose;           // T_world now
   Pose previous_pose;  // at the previous step
   Pose previous_controller;
+  // The pose the hand or script asks for (T_controller before the proxy); the instrument
+  // (`pose`) is the proxy: this plus proxy.offset, stopped by the heart and the wall.
+  Pose device;
+  surgery::ProxyState proxy;
+  SurfaceStop stop;
   surgery::ToolGeometry geometry;
   surgery::ContactSummary contact;
   std::array<bool, surgery::kTissueCount> touching{};
   bool blocked_by_heart = false, blocked_by_wall = false;
   surgery::PedalMode pedal = surgery::PedalMode::off;
+  Real power_w = 0;  // the cautery's power while the pedal is pressed (unit: W)
+  surgery::PoseSource source = surgery::PoseSource::none;  // of the last pose given
 };
 
 struct SurgicalSession {

@@ -1,0 +1,17 @@
+#pragma once
+// `imasim devices [--json]`: what can drive the simulator here and how each is mapped: the
+// OpenIGTLink link (whether its port is free to listen on), the game controllers SDL2 sees, a 3D
+// mouse (whether spacenavd answers), the device emulator and input scripts.
+#include <CLI/CLI.hpp>
+#include <memory>
+
+namespace imasim::cli {
+
+struct DevicesOptions {
+  bool json = false;
+};
+
+std::shared_ptr<DevicesOptions> add_devices_command(CLI::App& app);
+int run_devices_command(const DevicesOptions& options);
+
+}  // namespace imasim::cli

@@ -1,0 +1,168 @@
+#include "live_inputs.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+
+#include "console/console_mapping.hpp"
+#include "console/console_settings_use.hpp"
+#include "devices/gamepad_device.hpp"
+#include "devices/igtl_device.hpp"
+#include "devices/spacemouse_device.hpp"
+#if IMASIM_HAS_OPENHAPTICS
+#include "devices/openhaptics_device.hpp"
+#endif
+#if IMASIM_HAS_FORCE_DIMENSION
+#include "devices/force_dimension_device.hpp"
+#endif
+
+extern char** environ;
+
+namespace imasim::cli {
+
+namespace {
+
+// Starts `imasim device-emulator` (this very program) calling port `port`.
+pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
+                     double seconds, bool loop) {
+  const std::string self = "/proc/self/exe";
+  std::vector<std::string> args = {
+      "imasim", "device-emulator",    "--script",  script,
+      "--port", std::to_string(port), "--seconds", std::to_string(seconds)};
+  if (loop) args.push_back("--loop");
+  if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
+  std::vector<char*> argv;
+  for (std::string& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  // Its summary is not imasim run's report: stdout to /dev/null, errors to ours.
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int e = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (e != 0) throw std::runtime_error("cannot start the device emulator");
+  return pid;
+}
+
+nlohmann::ordered_json loop_report(const haptics::HapticLoopStats& s) {
+  nlohmann::ordered_json j;
+  j["ticks"] = s.ticks;
+  j["rate_hz"] = s.rate_hz;
+  j["period_p50_us"] = s.period_p50_us;
+  j["period_p99_error_us"] = s.period_p99_error_us;
+  j["period_max_us"] = s.period_max_us;
+  j["missed_deadlines"] = s.missed_deadlines;
+  j["latency_p99_us"] = s.latency_p99_us;
+  j["realtime_priority"] = s.realtime;
+  return j;
+}
+
+}  // namespace
+
+LiveInputs::LiveInputs(const LiveInputOptions& o) {
+  std::vector<std::unique_ptr<devices::InputDevice>> list;
+  std::uint16_t port = 0;
+  if (o.devices == "openigtlink" || o.devices == "emulator") {
+    devices::IgtlDeviceConfig config = console::igtl_device_config(o.settings);
+    config.link.role =
+        o.client ? devices::IgtlLinkConfig::Role::client : devices::IgtlLinkConfig::Role::server;
+    if (o.address) config.link.address = *o.address;
+    if (o.port) config.link.port = *o.port;
+    auto igtl = std::make_unique<devices::IgtlDevice>(config);  // throws IgtlLinkError
+    port = igtl->link().port();
+    list.push_back(std::move(igtl));
+  } else if (o.devices == "gamepad") {
+    list.push_back(std::make_unique<devices::GamepadDevice>());
+  } else if (o.devices == "spacemouse") {
+    list.push_back(std::make_unique<devices::SpaceMouseDevice>());
+  } else if (o.devices == "openhaptics") {
+#if IMASIM_HAS_OPENHAPTICS
+    // The names Touch Setup gives two devices (docs/haptics.md).
+    list.push_back(
+        std::make_unique<devices::OpenHapticsDevice>("Left Device", devices::Hand::left));
+    list.push_back(
+        std::make_unique<devices::OpenHapticsDevice>("Right Device", devices::Hand::right));
+#else
+    throw std::runtime_error(
+        "this imasim was built without the OpenHaptics adapter (configure with "
+        "-DIMASIM_OPENHAPTICS=ON where 3D Systems' SDK is installed)");
+#endif
+  } else if (o.devices == "force_dimension") {
+#if IMASIM_HAS_FORCE_DIMENSION
+    list.push_back(std::make_unique<devices::ForceDimensionDevice>(0, devices::Hand::left));
+    list.push_back(std::make_unique<devices::ForceDimensionDevice>(1, devices::Hand::right));
+#else
+    throw std::runtime_error(
+        "this imasim was built without the Force Dimension adapter (configure with "
+        "-DIMASIM_FORCE_DIMENSION=ON where its SDK is installed)");
+#endif
+  } else {
+    throw std::runtime_error("unknown live input '" + o.devices + "'");
+  }
+  console::LiveConsoleParams params = console::live_console_params(o.settings);
+  if (!o.realtime_priority) params.loop.realtime_priority = 0;
+  owned_ = std::make_unique<console::LiveConsole>(std::move(list), params);
+  console_ = owned_.get();
+  report_["kind"] = o.devices;
+  report_["link"] = console_->device_info()[0].name;
+  if (o.devices == "emulator")
+    emulator_ = spawn_emulator(o.script_file, o.scene_file, port, o.seconds, o.loop_script);
+  console_->start();
+}
+
+LiveInputs::~LiveInputs() {
+  if (!finished_) finish();
+}
+
+session::SessionInput LiveInputs::next(const session::SurgicalSession& s) {
+  if (start_s_ < 0) start_s_ = console_->now_s();
+  return console::to_session_input(console_->latest_input(), s);
+}
+
+void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t steps_done,
+                            double dt) {
+  console_->publish(s, steps_done);
+  const double due = start_s_ + double(steps_done) * dt;
+  const double wait = due - console_->now_s();
+  if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+}
+
+nlohmann::ordered_json LiveInputs::finish() {
+  if (finished_) return report_;
+  finished_ = true;
+  console_->stop();
+  const std::vector<devices::DeviceInfo> info = console_->device_info();
+  const console::LiveConsoleStats st = console_->stats();
+  if (emulator_ > 0) {
+    ::kill(emulator_, SIGTERM);
+    int status = 0;
+    ::waitpid(emulator_, &status, 0);
+    emulator_ = -1;
+  }
+  report_["connected_at_end"] = !info.empty() && info[0].connected;
+  report_["haptic_loop"] = loop_report(st.loop);
+  report_["force_max_n"] = st.force_max_n;
+  report_["contacts"] = st.contacts;
+  report_["models_rendered"] = st.models_read;
+  nlohmann::ordered_json safety;
+  for (int h = 0; h < 2; ++h) {
+    const haptics::SafetyCounters& c = st.safety[h];
+    safety[h == 0 ? "left" : "right"] = {{"non_finite", c.non_finite},
+                                         {"clamped", c.clamped},
+                                         {"rate_limited", c.rate_limited},
+                                         {"stale_model", c.stale_model},
+                                         {"device_lost", c.device_lost}};
+  }
+  report_["safety"] = safety;
+  return report_;
+}
+
+}  // namespace imasim::cli

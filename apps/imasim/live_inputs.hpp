@@ -1,0 +1,64 @@
+#pragma once
+// Where `imasim run` takes each step's input from (issue 13, `--devices`):
+//   script       the input script, sampled at the step's simulated time (headless, as fast as
+//                the machine steps);
+//   replay       a recorded input stream (console/input_stream.hpp), one line a step;
+//   openigtlink  live devices over OpenIGTLink (imasim the server, or a client of a tracker's
+//                server), stepped in real time with the 1 kHz haptic loop rendering forces;
+//   emulator     the same, with `imasim device-emulator` started as a child process playing
+//                the script on two emulated haptic devices over loopback;
+//   gamepad      a game controller through SDL2 (both hands and the pedal), real time;
+//   spacemouse   a 3D mouse through spacenavd (the right hand), real time.
+#include <sys/types.h>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "console/live_console.hpp"
+#include "scene/console_settings.hpp"
+#include "session/surgical_session.hpp"
+#include "surgery/input_script.hpp"
+
+namespace imasim::cli {
+
+struct LiveInputOptions {
+  std::string devices;      // "openigtlink", "emulator", "gamepad" or "spacemouse"
+  std::string script_file;  // the emulator's script
+  std::string scene_file;   // the emulator reads the device names from it too
+  scene::ConsoleSettings settings = scene::default_console_settings();  // the scene file's
+  std::optional<std::string> address;  // overrides the settings' OpenIGTLink address
+  std::optional<std::uint16_t> port;   // overrides its port; 0: any free (the emulator is told)
+  bool client = false;                 // call a tracker's server instead of listening
+  double seconds = 0;                  // the emulator plays this long
+  bool loop_script = false;            // the emulator plays the script over and over
+  bool realtime_priority = true;
+};
+
+class LiveInputs {
+ public:
+  // Starts the link (and the emulator); throws std::runtime_error with a message for the user.
+  explicit LiveInputs(const LiveInputOptions& options);
+  ~LiveInputs();
+  LiveInputs(const LiveInputs&) = delete;
+  LiveInputs& operator=(const LiveInputs&) = delete;
+
+  session::SessionInput next(const session::SurgicalSession& session);
+  // After a step: publishes the local models, then sleeps until the next step is due (real
+  // time: step k + 1 at start + (k + 1) dt).
+  void after_step(const session::SurgicalSession& session, std::uint64_t steps_done, double dt);
+  // Stops the loop and the emulator; the report's "devices" object.
+  nlohmann::ordered_json finish();
+
+ private:
+  console::LiveConsole* console_ = nullptr;
+  std::unique_ptr<console::LiveConsole> owned_;
+  pid_t emulator_ = -1;
+  double start_s_ = -1;
+  bool finished_ = false;
+  nlohmann::ordered_json report_;
+};
+
+}  // namespace imasim::cli

@@ -1,0 +1,113 @@
+#include "console/live_console.hpp"
+
+#include <algorithm>
+
+#include "console/local_model_of.hpp"
+
+namespace imasim::console {
+
+LiveConsole::LiveConsole(std::vector<std::unique_ptr<devices::InputDevice>> devices,
+                         const LiveConsoleParams& params)
+    : params_(params),
+      devices_(std::move(devices)),
+      t0_(std::chrono::steady_clock::now()),
+      tremor_{devices::TremorFilter(params.tremor), devices::TremorFilter(params.tremor)},
+      safety_{haptics::ForceSafety(params.safety, 0.0), haptics::ForceSafety(params.safety, 0.0)},
+      loop_(params.loop, [this](double) { tick(now_s()); }) {
+  for (const auto& d : devices_) {
+    const devices::DeviceInfo info = d->info();
+    drives_.push_back({info.drives_left, info.drives_right});
+  }
+}
+
+LiveConsole::~LiveConsole() {
+  stop();
+}
+
+void LiveConsole::start() {
+  const double now = now_s();
+  for (haptics::ForceSafety& s : safety_)
+    s.restart_ramp(now);
+  loop_.start();
+}
+
+void LiveConsole::stop() {
+  loop_.stop();
+}
+
+double LiveConsole::now_s() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+}
+
+devices::ConsoleInput LiveConsole::latest_input() {
+  inputs_.read(physics_side_input_);
+  return physics_side_input_;
+}
+
+void LiveConsole::publish(const session::SurgicalSession& s, std::uint64_t step) {
+  const double now = now_s();
+  models_.publish({local_model_of(s, 0, now, step), local_model_of(s, 1, now, step)});
+}
+
+void LiveConsole::publish_models(const std::array<haptics::LocalModel, 2>& models) {
+  models_.publish(models);
+}
+
+void LiveConsole::tick(double now) {
+  for (const auto& d : devices_)
+    d->poll(now, raw_);
+  // The physics sees the filtered hands; the force is rendered against them too (what the
+  // instrument follows).
+  devices::ConsoleInput filtered = raw_;
+  for (int h = 0; h < 2; ++h) {
+    devices::HandInput& hand = filtered.hand(devices::Hand(h));
+    if (hand.has_pose) hand.pose.translation = tremor_[h].filter(hand.pose.translation);
+  }
+  inputs_.publish(filtered);
+
+  const bool have_model = models_.read(latest_);
+  if (have_model && latest_[0].step != last_step_seen_) {
+    last_step_seen_ = latest_[0].step;
+    ++stats_.models_read;
+    stats_.contacts += latest_[0].contact_count + latest_[1].contact_count;
+  }
+  for (int h = 0; h < 2; ++h) {
+    const devices::Hand hand_id = devices::Hand(h);
+    const devices::HandInput& hand = filtered.hand(hand_id);
+    // Releasing the clutch brings hand and tool together again: the force ramps in anew.
+    if (clutch_[h] && !hand.clutch) safety_[h].restart_ramp(now);
+    clutch_[h] = hand.clutch;
+    bool device_ok = false;
+    for (std::size_t k = 0; k < devices_.size(); ++k)
+      device_ok = device_ok || (drives_[k][std::size_t(h)] && devices_[k]->connected());
+    haptics::ForceChannels f;
+    if (have_model && hand.has_pose && !hand.clutch) {
+      const haptics::LocalModel& m = latest_[h];
+      f = haptics::evaluate_local_model(
+          m, params_.forces, haptics::device_in_scene(m, hand.pose.translation, hand.velocity),
+          now);
+    }
+    const double age = have_model ? now - latest_[h].time_s : 1e9;
+    const Vec3 command = safety_[h].filter(f.total(), now, age, device_ok);
+    stats_.force_max_n = std::max(stats_.force_max_n, command.norm());
+    for (const auto& d : devices_)
+      d->send_force(hand_id, command, now);
+  }
+}
+
+LiveConsoleStats LiveConsole::stats() const {
+  LiveConsoleStats s = stats_;
+  s.loop = loop_.stats();
+  for (int h = 0; h < 2; ++h)
+    s.safety[h] = safety_[h].counters();
+  return s;
+}
+
+std::vector<devices::DeviceInfo> LiveConsole::device_info() const {
+  std::vector<devices::DeviceInfo> out;
+  for (const auto& d : devices_)
+    out.push_back(d->info());
+  return out;
+}
+
+}  // namespace imasim::console

@@ -1,0 +1,87 @@
+#pragma once
+// The console in real time (issue 13): the devices, read at 1 kHz on the haptic loop's thread,
+// feed the physics through a lock-free latest value; each physics step publishes its local
+// models back the same way; the loop renders eq. 17-19 against the newest hand pose and sends
+// each hand's force through its safety filter. Neither side ever waits on the other.
+//   haptic thread: poll devices -> tremor filter -> publish ConsoleInput
+//                  read LocalModels -> force per hand -> ForceSafety -> devices
+//   physics thread: latest_input() -> step_session -> publish(session)
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <vector>
+
+#include "devices/input_device.hpp"
+#include "devices/tremor_filter.hpp"
+#include "haptics/force_safety.hpp"
+#include "haptics/haptic_loop.hpp"
+#include "haptics/latest_value.hpp"
+#include "haptics/local_model.hpp"
+#include "session/surgical_session.hpp"
+
+namespace imasim::console {
+
+struct LiveConsoleParams {
+  haptics::HapticLoopConfig loop;
+  haptics::ForceModelParams forces = haptics::default_force_model_params();
+  haptics::SafetyParams safety;
+  devices::TremorFilterParams tremor;
+};
+
+struct LiveConsoleStats {
+  haptics::HapticLoopStats loop;
+  Real force_max_n = 0;           // largest command sent (unit: N)
+  std::uint64_t contacts = 0;     // contacts in the models the loop rendered, once per model
+  std::uint64_t models_read = 0;  // distinct physics steps the loop rendered
+  std::array<haptics::SafetyCounters, 2> safety{};
+};
+
+class LiveConsole {
+ public:
+  LiveConsole(std::vector<std::unique_ptr<devices::InputDevice>> devices,
+              const LiveConsoleParams& params);
+  ~LiveConsole();
+  LiveConsole(const LiveConsole&) = delete;
+  LiveConsole& operator=(const LiveConsole&) = delete;
+
+  void start();
+  void stop();  // joins the loop; safe twice
+  // Seconds on the console's steady clock (the loop's and the models' time base).
+  double now_s() const;
+
+  // Physics thread: the newest console input (all defaults until the devices said anything).
+  devices::ConsoleInput latest_input();
+  // Physics thread: the local models of the step just taken.
+  void publish(const session::SurgicalSession& session, std::uint64_t step);
+  // The same with models made elsewhere (tests, other front ends); time_s on now_s()'s clock.
+  void publish_models(const std::array<haptics::LocalModel, 2>& models);
+
+  // After stop(): the loop's figures and what the safety filters did.
+  LiveConsoleStats stats() const;
+  // The devices' descriptions (any thread while stopped; the loop owns them while running).
+  std::vector<devices::DeviceInfo> device_info() const;
+
+ private:
+  using Models = std::array<haptics::LocalModel, 2>;
+  void tick(double now_s);
+
+  LiveConsoleParams params_;
+  std::vector<std::unique_ptr<devices::InputDevice>> devices_;
+  std::vector<std::array<bool, 2>> drives_;  // per device: left, right
+  std::chrono::steady_clock::time_point t0_;
+  haptics::LatestValue<devices::ConsoleInput> inputs_;
+  haptics::LatestValue<Models> models_;
+  devices::ConsoleInput physics_side_input_{};
+  // Haptic thread only.
+  devices::ConsoleInput raw_{};
+  std::array<devices::TremorFilter, 2> tremor_;
+  std::array<haptics::ForceSafety, 2> safety_;
+  std::array<bool, 2> clutch_{false, false};
+  Models latest_{};
+  std::uint64_t last_step_seen_ = 0;
+  LiveConsoleStats stats_;
+  haptics::HapticLoop loop_;
+};
+
+}  // namespace imasim::console

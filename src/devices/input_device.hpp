@@ -1,0 +1,36 @@
+#pragma once
+// One interface for every input device (issue 13): desktop haptic devices and trackers over
+// OpenIGTLink, gamepads, 3D mice, scripted playback. A device drives part of the console (one
+// hand, both, the pedals): poll() writes what it owns into the ConsoleInput and leaves the rest.
+// All calls come from one thread (the 1 kHz loop's) and never block.
+#include <string>
+
+#include "devices/hand_input.hpp"
+
+namespace imasim::devices {
+
+struct DeviceInfo {
+  std::string kind;     // "openigtlink", "gamepad", "spacemouse", "script", ...
+  std::string name;     // what the device calls itself, or its address
+  std::string mapping;  // how its inputs reach the console, one line a control
+  bool connected = false;
+  bool force_feedback = false;
+  Real max_force_n = 0;             // the largest force it can render (unit: N)
+  Vec3 workspace_m = Vec3::Zero();  // extent of the hand's reach per axis (unit: m)
+  bool drives_left = false, drives_right = false, drives_pedal = false;
+};
+
+class InputDevice {
+ public:
+  virtual ~InputDevice() = default;
+  // Reads what has arrived and updates the parts of `input` this device drives. `now_s`: the
+  // loop's clock (unit: s).
+  virtual void poll(double now_s, ConsoleInput& input) = 0;
+  // The force to render on one hand (unit: N, scene frame); ignored without force feedback.
+  virtual void send_force(Hand hand, const Vec3& force_n, double now_s) = 0;
+  // Whether it answers now (cheap: called every tick).
+  virtual bool connected() const = 0;
+  virtual DeviceInfo info() const = 0;  // (allocates: not for every tick)
+};
+
+}  // namespace imasim::devices

@@ -1,0 +1,52 @@
+#pragma once
+// The console's settings as a scene file gives them (issue 13): the force model's parameters
+// per tissue (eq. 17-19, docs/haptics.md for their reasoning), the safety limits, the hands'
+// motion scaling and tremor filter, and the OpenIGTLink link (address, port, device names).
+// Plain numbers and names here; the console layer turns them into the haptics' and devices'
+// own parameters (console/console_settings_use.hpp), whose defaults these equal (tested).
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "math/types.hpp"
+
+namespace imasim::scene {
+
+// One tissue's force parameters (eq. 17-19).
+struct TissueForceSettings {
+  Real stiffness = 0;           // k_d (unit: N/m)
+  Real damping = 0;             // c_d (unit: N s/m)
+  Real friction = 0;            // mu (-)
+  Real cutting_resistance = 0;  // k_c of eq. 18 (unit: N s/m)
+  Real cut_coefficient = 0;     // k_t while cutting (unit: N/W)
+  Real cut_decay = 0;           // alpha while cutting (unit: 1/m)
+  Real coag_coefficient = 0;    // k_t while coagulating (unit: N/W)
+  Real coag_decay = 0;          // alpha while coagulating (unit: 1/m)
+};
+
+// Tissues in the force model's order: fascia, fat, IMA, heart, chest wall.
+inline constexpr std::array<const char*, 5> kForceTissueNames = {"fascia", "fat", "ima", "heart",
+                                                                 "chest_wall"};
+
+struct ConsoleSettings {
+  std::array<TissueForceSettings, 5> force;
+  Real device_max_force = Real(3.3);  // (unit: N)
+  Real max_force_rate = 500;          // (unit: N/s)
+  Real ramp_s = Real(0.5);            // force ramp-in after start and clutch (unit: s)
+  Real stale_after_s = Real(0.02);    // the watchdog's limit on the local model's age (unit: s)
+  Real fade_s = Real(0.01);           // (unit: s)
+  Real motion_scale = Real(1) / 3;    // instrument motion per hand motion (-)
+  Real tremor_cutoff_hz = 6;          // 0: no tremor filter (unit: Hz)
+  std::string igtl_address = "127.0.0.1";
+  std::uint32_t igtl_port = 18944;
+  bool igtl_allow_remote = false;
+  std::string left_hand = "LeftHand", right_hand = "RightHand";
+  std::string left_tool = "LeftTool", right_tool = "RightTool";
+  std::string left_buttons = "LeftButtons", right_buttons = "RightButtons";
+  std::string pedal = "Pedal";
+  std::string left_force = "LeftForce", right_force = "RightForce";
+};
+
+ConsoleSettings default_console_settings();
+
+}  // namespace imasim::scene
