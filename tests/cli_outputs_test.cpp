@@ -224,6 +224,11 @@ TEST(RunDevices, BadRequestsAreClearErrors) {
   const Finished vendor = run("run --headless --devices force_dimension --seconds 0.1");
   EXPECT_EQ(vendor.exit_code, 2);
   EXPECT_NE(vendor.err.find("-DIMASIM_FORCE_DIMENSION=ON"), std::string::npos) << vendor.err;
+  // Pedals go beside live devices, not a script.
+  const Finished pedal = run("run --headless --script " + std::string(IMASIM_SOURCE_DIR) +
+                             "/examples/open_fascia.script --pedal --seconds 0.1");
+  EXPECT_EQ(pedal.exit_code, 2);
+  EXPECT_NE(pedal.err.find("--pedal goes with live --devices"), std::string::npos) << pedal.err;
   // The emulator alone, with nobody to call.
   const Finished alone = run("device-emulator --script " + std::string(IMASIM_SOURCE_DIR) +
                              "/examples/open_fascia.script --port 1 --wait 0.2");

@@ -1,6 +1,8 @@
 // `imasim cloth` as a user runs it: the JSON contract, and clear errors for bad arguments.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <sys/wait.h>
 #include <array>
 #include <cstdio>
@@ -378,9 +380,35 @@ TEST(DevicesCommand, ListsEveryKindWithItsMapping) {
     EXPECT_FALSE(d["mapping"].get<std::string>().empty());
     EXPECT_FALSE(d["use"].get<std::string>().empty());
   }
-  EXPECT_EQ(kinds, (std::vector<std::string>{"openigtlink", "gamepad", "spacemouse", "emulator",
-                                             "script"}));
+  EXPECT_EQ(kinds, (std::vector<std::string>{"openigtlink", "gamepad", "spacemouse", "pedal",
+                                             "emulator", "script"}));
   EXPECT_EQ(j["devices"][0]["max_force_n"], 3.3);
+}
+
+// The mappings listed are the scene file's; a broken scene file is named with its line.
+TEST(DevicesCommand, ShowsTheSceneFilesMappings) {
+  const std::string path = ::testing::TempDir() + "imasim_devices_scene.toml";
+  {
+    std::ofstream f(path);
+    f << "[devices]\ngamepad_cut_button = \"right_shoulder\"\npedal_coag_button = 5\n"
+         "igtl_port = 0\n";
+  }
+  const Outcome r = run_imasim("devices --json --scene " + path);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(r.output);
+  EXPECT_NE(j["devices"][1]["mapping"].get<std::string>().find("right_shoulder -> pedal cut"),
+            std::string::npos)
+      << j["devices"][1]["mapping"];
+  EXPECT_NE(j["devices"][3]["mapping"].get<std::string>().find("button 5 -> pedal coag"),
+            std::string::npos)
+      << j["devices"][3]["mapping"];
+  {
+    std::ofstream f(path);
+    f << "[devices]\n\npedal_cut_button = -1\n";
+  }
+  const Outcome bad = run_imasim("devices --scene " + path);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find(":3: key 'devices.pedal_cut_button'"), std::string::npos) << bad.output;
 }
 
 }  // namespace

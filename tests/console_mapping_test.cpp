@@ -88,6 +88,33 @@ TEST(LocalModelOf, TheDeviceIsKdDBehindTheProxy) {
   EXPECT_NEAR(g.normal.y(), law.of(haptics::TissueKind::fascia).stiffness * 0.002, 1e-9);
 }
 
+// Stopped against the beating heart: the local model's heart contact moves with the wall, so
+// between steps the depth (and eq. 17's force) follows the wall's motion toward the device.
+TEST(LocalModelOf, TheHeartsContactMovesWithItsWall) {
+  session::SurgicalSession s = default_session();
+  session::Station& st = s.stations[0];
+  st.source = surgery::PoseSource::tool;
+  const Vec3 hinge = st.state.controller.translation;
+  st.stop.tissue = surgery::Tissue::heart;
+  st.stop.point = hinge + Vec3(0, 0, 0.004);  // the jaws' tip, 4 mm past the hinge
+  st.stop.normal = -Vec3::UnitY();
+  st.stop.velocity = Vec3(0.01, -0.03, 0);  // the wall coming at the tool at 30 mm/s
+  const haptics::LocalModel m = local_model_of(s, 0, 1.0, 3);
+  ASSERT_EQ(m.contact_count, 1u);
+  EXPECT_EQ(m.contacts[0].tissue, haptics::TissueKind::heart);
+  EXPECT_EQ(m.contacts[0].surface_velocity, st.stop.velocity);
+  // The device 1 mm past the stop (into the heart, +y), still: after 2 ms the wall has come
+  // 0.06 mm further at it.
+  const haptics::DeviceTip device =
+      haptics::device_in_scene(m, hinge + Vec3(0, 0.001, 0), Vec3::Zero());
+  const haptics::ForceModelParams law = haptics::default_force_model_params();
+  const haptics::ContactForceParams heart = law.of(haptics::TissueKind::heart);
+  const haptics::ForceChannels f = haptics::evaluate_local_model(m, law, device, 1.002);
+  // eq. 17: k_d d + c_d v_n, d = 1.06 mm, v_n = 30 mm/s (the wall's speed into the device).
+  EXPECT_NEAR(f.normal_n, heart.stiffness * 0.00106 + heart.damping * 0.03, 1e-9);
+  EXPECT_NEAR(f.normal.normalized().dot(-Vec3::UnitY()), 1.0, 1e-12);
+}
+
 // The scene file's console defaults are the haptics' and devices' own (one table each side).
 TEST(ConsoleSettings, DefaultsAreTheLayersOwn) {
   const scene::ConsoleSettings c = scene::default_console_settings();
@@ -118,6 +145,39 @@ TEST(ConsoleSettings, DefaultsAreTheLayersOwn) {
   EXPECT_EQ(link.link.port, devices::IgtlLinkConfig{}.port);
   EXPECT_EQ(link.link.address, devices::IgtlLinkConfig{}.address);
   EXPECT_EQ(c.motion_scale, surgery::ArmParams{}.motion_scale);
+}
+
+// The scene file's device mappings default to the devices' own and reach them when changed.
+TEST(ConsoleSettings, DeviceMappingsAreTheDevicesOwnAndFollowTheSceneFile) {
+  scene::ConsoleSettings c = scene::default_console_settings();
+  const devices::GamepadMapping g = gamepad_mapping(c), gd;
+  EXPECT_EQ(g.speed, gd.speed);
+  EXPECT_EQ(g.dead_zone, gd.dead_zone);
+  EXPECT_EQ(g.reach, gd.reach);
+  EXPECT_EQ(g.cut_button, gd.cut_button);
+  EXPECT_EQ(g.coag_button, gd.coag_button);
+  EXPECT_EQ(g.clutch_button, gd.clutch_button);
+  const devices::SpaceMouseMapping m = spacemouse_mapping(c), md;
+  EXPECT_EQ(m.hand, md.hand);
+  EXPECT_EQ(m.speed, md.speed);
+  EXPECT_EQ(m.turn_rate, md.turn_rate);
+  EXPECT_EQ(m.dead_zone, md.dead_zone);
+  EXPECT_EQ(m.jaw_button, md.jaw_button);
+  EXPECT_EQ(m.clutch_button, md.clutch_button);
+  const devices::PedalMapping p = pedal_mapping(c), pd;
+  EXPECT_EQ(p.joystick, pd.joystick);
+  EXPECT_EQ(p.cut_button, pd.cut_button);
+  EXPECT_EQ(p.coag_button, pd.coag_button);
+  EXPECT_EQ(p.clutch_button, pd.clutch_button);
+
+  c.gamepad_cut_button = "right_shoulder";
+  c.gamepad_left_clutch_button = "a";
+  c.spacemouse_hand = "left";
+  c.pedal_clutch_button = scene::kUnmappedPedalButton;
+  EXPECT_EQ(gamepad_mapping(c).cut_button, devices::kRightShoulder);
+  EXPECT_EQ(gamepad_mapping(c).clutch_button[0], devices::kButtonA);
+  EXPECT_EQ(spacemouse_mapping(c).hand, devices::Hand::left);
+  EXPECT_EQ(pedal_mapping(c).clutch_button, devices::kNoPedalButton);
 }
 
 }  // namespace

@@ -96,6 +96,8 @@ TEST(GamepadDevice, AVirtualControllerThroughSdlDrivesTheHands) {
     pad.poll(0.6, in);
     EXPECT_FALSE(pad.connected());
     EXPECT_EQ(in.left.pose.translation, left);
+    EXPECT_EQ(in.pedal, haptics::CauteryMode::off);  // no energy without the pad
+    EXPECT_EQ(in.left.velocity, Vec3::Zero());
   }
   SDL_QuitSubSystem(SDL_INIT_GAMECONTROLLER);
 }

@@ -77,13 +77,26 @@ TEST(Grasp, ForcepsLiftTheFasciaAndTheFatUnderItThenRelease) {
   EXPECT_EQ(w.state.constraints.attachment.size(), held);
 
   // Retract 8 mm into the cavity over 0.4 s, then hold 0.2 s.
+  const Real rest_pull =
+      grasp_force_on_jaws(w.state.particles, params, world_pose(forceps, state), grasper).norm();
+  Vec3 half_way_pull = Vec3::Zero();
   for (int n = 0; n < 120; ++n) {
     if (n < 80) state.controller.translation.y() -= 0.0001;
     update_grasp(w, params, forceps, state, grasper);
     ASSERT_TRUE(tissue::step_tissue(w, exec).ok());
+    if (n == 39)
+      half_way_pull =
+          grasp_force_on_jaws(w.state.particles, params, world_pose(forceps, state), grasper);
   }
   const physics::Particles& P = w.state.particles;
   const Pose tool = world_pose(forceps, state);
+  // The stretched fascia pulls the jaws back towards the wall (+y), harder the further it is
+  // retracted; what it pulled with before the retraction is small beside it.
+  const Vec3 pull = grasp_force_on_jaws(P, params, tool, grasper);
+  EXPECT_GT(pull.y(), 0.5 * pull.norm());
+  EXPECT_GT(pull.y(), 1.5 * half_way_pull.y());
+  EXPECT_GT(half_way_pull.y(), 0);
+  EXPECT_LT(rest_pull, 0.2 * pull.norm());
   for (const Grasper::Hold& h : grasper.held)
     EXPECT_LT((P.position[h.particle] - tool.apply(h.local)).norm(), 5e-4);
   const Real lifted = fat_lift(patch, settled, 0, 0.076, 0.004);
@@ -99,12 +112,33 @@ TEST(Grasp, ForcepsLiftTheFasciaAndTheFatUnderItThenRelease) {
   }
   EXPECT_TRUE(grasper.held.empty());
   EXPECT_EQ(w.state.constraints.attachment.size(), 0u);
+  EXPECT_EQ(grasp_force_on_jaws(P, params, world_pose(forceps, state), grasper), Vec3::Zero());
   for (int n = 0; n < 200; ++n) {
     update_grasp(w, params, forceps, state, grasper);
     ASSERT_TRUE(tissue::step_tissue(w, exec).ok());
   }
   EXPECT_GT(fat_lift(patch, settled, 0, 0.076, 0.004),
             0.5 * lifted);  // less than half the lift remains
+}
+
+// Each hold is a spring of the grasp's compliance: the jaws get sum (x - target) / alpha.
+TEST(Grasp, PullOnTheJawsIsTheHoldsStretchOverTheirCompliance) {
+  physics::Particles P;
+  P.add(Vec3(0.010, 0.001, 0.020), 1e-4, 0);
+  P.add(Vec3(-0.002, 0.0, 0.015), 1e-4, 0);
+  GraspParams params;
+  params.compliance = 2e-6;  // (unit: m/N)
+  Grasper g;
+  g.held.push_back({0, {}, Vec3(0.010, 0.0, 0.020)});    // 1 mm off in y
+  g.held.push_back({1, {}, Vec3(-0.002, 0.0, 0.0145)});  // 0.5 mm off in z
+  Pose jaws;
+  jaws.translation = Vec3(0, -0.0005, 0);  // the targets ride 0.5 mm lower
+  const Vec3 f = grasp_force_on_jaws(P, params, jaws, g);
+  EXPECT_NEAR(f.x(), 0, 1e-9);
+  EXPECT_NEAR(f.y(), (0.0015 + 0.0005) / 2e-6, 1e-6);  // 1000 N
+  EXPECT_NEAR(f.z(), 0.0005 / 2e-6, 1e-6);             // 250 N
+  params.compliance = 0;                               // rigid holds: no force to read
+  EXPECT_EQ(grasp_force_on_jaws(P, params, jaws, g), Vec3::Zero());
 }
 
 }  // namespace

@@ -65,6 +65,13 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "bad.toml:2: key 'devices.left_hand': expected a name of 1 to 20 letters, digits, '.', '_' "
        "or '-', got \"Left Hand\""},
       {"[devices]\n\npedal = \"\"\n", "bad.toml:3: key 'devices.pedal': expected a name of 1"},
+      {"[devices]\ngamepad_cut_button = \"start\"\n",
+       "bad.toml:2: key 'devices.gamepad_cut_button': expected \"a\" or \"b\" or \"x\" or \"y\" or "
+       "\"left_shoulder\" or \"right_shoulder\", got \"start\""},
+      {"[devices]\nspacemouse_hand = \"both\"\n",
+       "bad.toml:2: key 'devices.spacemouse_hand': expected \"left\" or \"right\", got \"both\""},
+      {"[devices]\npedal_coag_button = 33\n",
+       "bad.toml:2: key 'devices.pedal_coag_button': expected an integer in [0, 32], got 33"},
       {"[devices]\nigtl_port = 70000\n",
        "bad.toml:2: key 'devices.igtl_port': expected an integer in [0, 65535], got 70000"},
       {"[force_ima]\nstiffness_n_per_m = -5\n",
@@ -156,6 +163,15 @@ TEST(SceneFile, ConsoleSettingsReachTheSession) {
   EXPECT_EQ(p.console.igtl_address, "127.0.0.2");
   EXPECT_EQ(p.console.right_tool, "HookTracker");
   EXPECT_EQ(p.console.left_tool, "LeftTool");  // not given: the default
+  const ThoraxSceneParams q = parse_scene(
+      "[devices]\ngamepad_coag_button = \"left_shoulder\"\ngamepad_speed_m_per_s = 0.1\n"
+      "spacemouse_hand = \"left\"\npedal_joystick = \"Footpedal\"\npedal_clutch_button = 32\n",
+      "pads.toml");
+  EXPECT_EQ(q.console.gamepad_coag_button, "left_shoulder");
+  EXPECT_EQ(q.console.gamepad_speed, Real(0.1));
+  EXPECT_EQ(q.console.spacemouse_hand, "left");
+  EXPECT_EQ(q.console.pedal_joystick, "Footpedal");
+  EXPECT_EQ(q.console.pedal_clutch_button, kUnmappedPedalButton);
   const session::SurgicalSession s = session::make_surgical_session(p, {});
   EXPECT_EQ(s.stations[0].arm.motion_scale, Real(0.2));
   EXPECT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::fascia)], 450);

@@ -3,11 +3,15 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cli_checks.hpp"
+#include "console/console_settings_use.hpp"
 #include "devices/emulated_console.hpp"
 #include "devices/gamepad_device.hpp"
 #include "devices/igtl_device.hpp"
+#include "devices/joystick_pedal_device.hpp"
 #include "devices/spacemouse_device.hpp"
 #include "report.hpp"
+#include "scene/scene_file.hpp"
 
 namespace imasim::cli {
 
@@ -32,25 +36,38 @@ nlohmann::ordered_json describe(const devices::DeviceInfo& d, const std::string&
 std::shared_ptr<DevicesOptions> add_devices_command(CLI::App& app) {
   auto opt = std::make_shared<DevicesOptions>();
   CLI::App* cmd = app.add_subcommand("devices", "List the input devices and how they are mapped");
+  cmd->add_option("--scene", opt->scene_file,
+                  "Scene file whose devices.* keys map the devices; default: the built-in scene")
+      ->check(non_empty());
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
   return opt;
 }
 
 int run_devices_command(const DevicesOptions& o) {
+  scene::ConsoleSettings settings = scene::default_console_settings();
+  if (!o.scene_file.empty()) {
+    try {
+      settings = scene::load_scene_file(o.scene_file).console;
+    } catch (const scene::SceneFileError& e) {
+      for (const std::string& m : e.messages())
+        std::cerr << m << '\n';
+      return 2;
+    }
+  }
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   {
-    devices::IgtlDeviceConfig config;  // the protocol's port on loopback
+    const devices::IgtlDeviceConfig config = console::igtl_device_config(settings);
+    const std::string where = config.link.address + ":" + std::to_string(config.link.port);
     nlohmann::ordered_json j;
     try {
       const devices::IgtlDevice igtl(config);
       j = describe(igtl.info(),
-                   "imasim run --devices openigtlink (trackers and devices call "
-                   "127.0.0.1:18944)");
+                   "imasim run --devices openigtlink (trackers and devices call " + where + ")");
       j["listening_possible"] = true;
     } catch (const devices::IgtlLinkError& e) {
       devices::DeviceInfo d;
       d.kind = "openigtlink";
-      d.name = "127.0.0.1:18944";
+      d.name = where;
       j = describe(d, "imasim run --devices openigtlink --igtl-port P");
       j["listening_possible"] = false;
       j["problem"] = e.what();
@@ -60,7 +77,7 @@ int run_devices_command(const DevicesOptions& o) {
   {
     nlohmann::ordered_json j;
     try {
-      const devices::GamepadDevice pad;
+      const devices::GamepadDevice pad(console::gamepad_mapping(settings));
       j = describe(pad.info(), "imasim run --devices gamepad");
     } catch (const std::exception& e) {
       devices::DeviceInfo d;
@@ -72,10 +89,23 @@ int run_devices_command(const DevicesOptions& o) {
     list.push_back(j);
   }
   {
-    devices::SpaceMouseDevice mouse;
+    devices::SpaceMouseDevice mouse(console::spacemouse_mapping(settings));
     devices::ConsoleInput probe;
     mouse.poll(0.0, probe);
     list.push_back(describe(mouse.info(), "imasim run --devices spacemouse"));
+  }
+  {
+    nlohmann::ordered_json j;
+    try {
+      const devices::JoystickPedalDevice pedal(console::pedal_mapping(settings));
+      j = describe(pedal.info(), "imasim run --devices ... --pedal");
+    } catch (const std::exception& e) {
+      devices::DeviceInfo d;
+      d.kind = "pedal";
+      d.name = e.what();
+      j = describe(d, "imasim run --devices ... --pedal");
+    }
+    list.push_back(j);
   }
   {
     devices::DeviceInfo d;

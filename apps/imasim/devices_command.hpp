@@ -4,11 +4,13 @@
 // mouse (whether spacenavd answers), the device emulator and input scripts.
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <string>
 
 namespace imasim::cli {
 
 struct DevicesOptions {
   bool json = false;
+  std::string scene_file;  // empty: the built-in scene's mappings
 };
 
 std::shared_ptr<DevicesOptions> add_devices_command(CLI::App& app);

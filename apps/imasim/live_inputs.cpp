@@ -14,6 +14,7 @@
 #include "console/console_settings_use.hpp"
 #include "devices/gamepad_device.hpp"
 #include "devices/igtl_device.hpp"
+#include "devices/joystick_pedal_device.hpp"
 #include "devices/spacemouse_device.hpp"
 #if IMASIM_HAS_OPENHAPTICS
 #include "devices/openhaptics_device.hpp"
@@ -80,9 +81,10 @@ LiveInputs::LiveInputs(const LiveInputOptions& o) {
     port = igtl->link().port();
     list.push_back(std::move(igtl));
   } else if (o.devices == "gamepad") {
-    list.push_back(std::make_unique<devices::GamepadDevice>());
+    list.push_back(std::make_unique<devices::GamepadDevice>(console::gamepad_mapping(o.settings)));
   } else if (o.devices == "spacemouse") {
-    list.push_back(std::make_unique<devices::SpaceMouseDevice>());
+    list.push_back(
+        std::make_unique<devices::SpaceMouseDevice>(console::spacemouse_mapping(o.settings)));
   } else if (o.devices == "openhaptics") {
 #if IMASIM_HAS_OPENHAPTICS
     // The names Touch Setup gives two devices (docs/haptics.md).
@@ -107,12 +109,17 @@ LiveInputs::LiveInputs(const LiveInputOptions& o) {
   } else {
     throw std::runtime_error("unknown live input '" + o.devices + "'");
   }
+  // Polled after the hands' device: its pedal and clutch are the ones that count.
+  if (o.pedal)
+    list.push_back(
+        std::make_unique<devices::JoystickPedalDevice>(console::pedal_mapping(o.settings)));
   console::LiveConsoleParams params = console::live_console_params(o.settings);
   if (!o.realtime_priority) params.loop.realtime_priority = 0;
   owned_ = std::make_unique<console::LiveConsole>(std::move(list), params);
   console_ = owned_.get();
   report_["kind"] = o.devices;
   report_["link"] = console_->device_info()[0].name;
+  if (o.pedal) report_["pedal"] = console_->device_info().back().name;
   if (o.devices == "emulator")
     emulator_ = spawn_emulator(o.script_file, o.scene_file, port, o.seconds, o.loop_script);
   console_->start();
@@ -148,6 +155,8 @@ nlohmann::ordered_json LiveInputs::finish() {
     emulator_ = -1;
   }
   report_["connected_at_end"] = !info.empty() && info[0].connected;
+  if (info.size() > 1 && info.back().kind == "pedal")
+    report_["pedal_connected_at_end"] = info.back().connected;
   report_["haptic_loop"] = loop_report(st.loop);
   report_["force_max_n"] = st.force_max_n;
   report_["contacts"] = st.contacts;

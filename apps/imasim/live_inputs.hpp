@@ -8,7 +8,8 @@
 //   emulator     the same, with `imasim device-emulator` started as a child process playing
 //                the script on two emulated haptic devices over loopback;
 //   gamepad      a game controller through SDL2 (both hands and the pedal), real time;
-//   spacemouse   a 3D mouse through spacenavd (the right hand), real time.
+//   spacemouse   a 3D mouse through spacenavd (the right hand), real time;
+// any of the live ones with foot pedals from a joystick's buttons beside them (`--pedal`).
 #include <sys/types.h>
 #include <cstdint>
 #include <memory>
@@ -32,6 +33,7 @@ struct LiveInputOptions {
   std::optional<std::string> address;  // overrides the settings' OpenIGTLink address
   std::optional<std::uint16_t> port;   // overrides its port; 0: any free (the emulator is told)
   bool client = false;                 // call a tracker's server instead of listening
+  bool pedal = false;                  // add foot pedals from a joystick (settings' mapping)
   double seconds = 0;                  // the emulator plays this long
   bool loop_script = false;            // the emulator plays the script over and over
   bool realtime_priority = true;

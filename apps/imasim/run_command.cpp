@@ -103,6 +103,9 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
       ->check(CLI::Range(0, 65535));
   cmd->add_flag("--igtl-client", opt->igtl_client,
                 "OpenIGTLink: call a tracker's server instead of listening");
+  cmd->add_flag("--pedal", opt->pedal,
+                "With live --devices: foot pedals from a joystick's buttons (a USB foot "
+                "switch), mapped by the scene's devices.pedal_* keys");
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
   cmd->add_flag("--progress", opt->progress,
                 "Report the simulated time on stderr every few seconds (always on a terminal)");
@@ -163,6 +166,11 @@ int run_run_command(const RunOptions& o) {
   if (live && devices != "emulator" && script) {
     std::cerr << "imasim run: --devices " << devices
               << " takes its input from the devices, not --script\n";
+    return 2;
+  }
+  if (o.pedal && !live) {
+    std::cerr << "imasim run: --pedal goes with live --devices (openigtlink, emulator, gamepad, "
+                 "spacemouse, ...)\n";
     return 2;
   }
   std::optional<std::vector<session::SessionInput>> replay;
@@ -246,6 +254,7 @@ int run_run_command(const RunOptions& o) {
     lo.port = o.igtl_port;
     if (devices == "emulator" && !o.igtl_port) lo.port = 0;  // any free port, told to the child
     lo.client = o.igtl_client;
+    lo.pedal = o.pedal;
     lo.seconds = seconds + 1;
     try {
       live_inputs = std::make_unique<LiveInputs>(lo);

@@ -33,6 +33,7 @@ struct RunOptions {
   std::optional<std::string> igtl_address;  // unset: the scene file's (devices.igtl_address)
   std::optional<std::uint16_t> igtl_port;   // unset: the scene file's (devices.igtl_port)
   bool igtl_client = false;
+  bool pedal = false;  // a foot switch (a joystick's buttons) drives the pedals and the clutch
   CLI::Option* seconds_option = nullptr;  // given on the command line?
 };
 

@@ -2,6 +2,25 @@
 
 namespace imasim::console {
 
+namespace {
+
+// The scene file's button names are kGamepadButtonNames, in devices::GamepadButton's order.
+static_assert(devices::kButtonA == 0 && devices::kButtonB == 1 && devices::kButtonX == 2 &&
+              devices::kButtonY == 3 && devices::kLeftShoulder == 4 &&
+              devices::kRightShoulder == 5 &&
+              devices::kGamepadButtons == scene::kGamepadButtonNames.size());
+static_assert(devices::kNoPedalButton == scene::kUnmappedPedalButton);
+
+// A name the scene file checked against kGamepadButtonNames; an unknown one (a settings object
+// built by hand) keeps the default.
+std::uint8_t gamepad_button(const std::string& name, std::uint8_t fallback) {
+  for (std::size_t k = 0; k < scene::kGamepadButtonNames.size(); ++k)
+    if (scene::kGamepadButtonNames[k] == name) return static_cast<std::uint8_t>(k);
+  return fallback;
+}
+
+}  // namespace
+
 haptics::ForceModelParams force_model_params(const scene::ConsoleSettings& c) {
   haptics::ForceModelParams p;
   for (std::size_t k = 0; k < haptics::kTissueKinds; ++k) {
@@ -44,6 +63,38 @@ devices::IgtlDeviceConfig igtl_device_config(const scene::ConsoleSettings& c) {
   n.left_force = c.left_force, n.right_force = c.right_force;
   d.max_force_n = c.device_max_force;
   return d;
+}
+
+devices::GamepadMapping gamepad_mapping(const scene::ConsoleSettings& c) {
+  devices::GamepadMapping g;
+  g.speed = c.gamepad_speed;
+  g.dead_zone = c.gamepad_dead_zone;
+  g.reach = c.gamepad_reach;
+  g.cut_button = gamepad_button(c.gamepad_cut_button, g.cut_button);
+  g.coag_button = gamepad_button(c.gamepad_coag_button, g.coag_button);
+  g.clutch_button[0] = gamepad_button(c.gamepad_left_clutch_button, g.clutch_button[0]);
+  g.clutch_button[1] = gamepad_button(c.gamepad_right_clutch_button, g.clutch_button[1]);
+  return g;
+}
+
+devices::SpaceMouseMapping spacemouse_mapping(const scene::ConsoleSettings& c) {
+  devices::SpaceMouseMapping m;
+  m.hand = c.spacemouse_hand == "left" ? devices::Hand::left : devices::Hand::right;
+  m.speed = c.spacemouse_speed;
+  m.turn_rate = c.spacemouse_turn_rate;
+  m.dead_zone = c.spacemouse_dead_zone;
+  m.jaw_button = int(c.spacemouse_jaw_button);
+  m.clutch_button = int(c.spacemouse_clutch_button);
+  return m;
+}
+
+devices::PedalMapping pedal_mapping(const scene::ConsoleSettings& c) {
+  devices::PedalMapping p;
+  p.joystick = c.pedal_joystick;
+  p.cut_button = c.pedal_cut_button;
+  p.coag_button = c.pedal_coag_button;
+  p.clutch_button = c.pedal_clutch_button;
+  return p;
 }
 
 }  // namespace imasim::console

@@ -42,6 +42,7 @@ haptics::LocalModel local_model_of(const session::SurgicalSession& s, int statio
     c.point = st.stop.point;
     c.normal = st.stop.normal;
     c.lever = st.stop.point - reference;
+    c.surface_velocity = st.stop.velocity;
     c.tissue = tissue_kind(st.stop.tissue);
   }
   if (station == 1 && st.pedal != surgery::PedalMode::off) {

@@ -52,6 +52,9 @@ void GamepadDevice::poll(double now_s, ConsoleInput& input) {
   if (c != nullptr && !SDL_GameControllerGetAttached(c)) {
     SDL_GameControllerClose(c);
     controller_ = c = nullptr;
+    // A pad pulled out: no energy, the hands stop where they are.
+    input.pedal = haptics::CauteryMode::off;
+    input.left.velocity = input.right.velocity = Vec3::Zero();
   }
   if (c == nullptr) {
     open_first();  // plugged in since
@@ -95,12 +98,15 @@ DeviceInfo GamepadDevice::info() const {
   d.name = controller_ != nullptr ? name_ : "no game controller found";
   char speed[32];
   std::snprintf(speed, sizeof speed, "%g", double(mapping_.speed));
+  const GamepadMapping& m = mapping_;
   d.mapping = std::string("left / right stick -> left / right hand x, y (velocity, ") + speed +
               " m/s at full deflection; shoulder held: y moves z)\n"
-              "left / right trigger -> left / right jaw (pulled = closed)\n"
-              "A -> pedal cut, B -> pedal coag (while held)\n"
-              "X / Y -> left / right clutch (while held)\n"
-              "forces -> rumble";
+              "left / right trigger -> left / right jaw (pulled = closed)\n" +
+              gamepad_button_name(m.cut_button) + " -> pedal cut, " +
+              gamepad_button_name(m.coag_button) + " -> pedal coag (while held)\n" +
+              gamepad_button_name(m.clutch_button[0]) + " / " +
+              gamepad_button_name(m.clutch_button[1]) +
+              " -> left / right clutch (while held)\nforces -> rumble";
   d.connected = controller_ != nullptr;
   d.force_feedback = false;
   d.workspace_m = Vec3::Constant(2 * mapping_.reach);

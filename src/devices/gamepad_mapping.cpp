@@ -18,6 +18,12 @@ Real shaped(Real a, Real dead) {
 
 }  // namespace
 
+const char* gamepad_button_name(std::uint8_t button) {
+  constexpr const char* kNames[kGamepadButtons] = {
+      "a", "b", "x", "y", "left_shoulder", "right_shoulder"};
+  return button < kGamepadButtons ? kNames[button] : "?";
+}
+
 void apply_gamepad(const GamepadMapping& g, const GamepadState& pad, Real dt, ConsoleInput& in) {
   for (int h = 0; h < 2; ++h) {
     HandInput& hand = in.hand(Hand(h));

@@ -41,6 +41,9 @@ struct GamepadMapping {
   std::uint8_t cut_button = kButtonA, coag_button = kButtonB;
 };
 
+// "a", "b", "x", "y", "left_shoulder", "right_shoulder" (the scene file's names); "?" past them.
+const char* gamepad_button_name(std::uint8_t button);
+
 // One update over `dt` seconds: moves each hand, sets jaws, clutches and the pedal. Hands are
 // in the console's hand frame (the arms scale them); their velocity is the stick's.
 void apply_gamepad(const GamepadMapping& mapping, const GamepadState& pad, Real dt,

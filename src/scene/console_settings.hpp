@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 #include "math/types.hpp"
 
@@ -28,6 +29,13 @@ struct TissueForceSettings {
 inline constexpr std::array<const char*, 5> kForceTissueNames = {"fascia", "fat", "ima", "heart",
                                                                  "chest_wall"};
 
+// The gamepad buttons a function can be given, in devices::GamepadButton's order.
+inline constexpr std::array<std::string_view, 6> kGamepadButtonNames = {
+    "a", "b", "x", "y", "left_shoulder", "right_shoulder"};
+inline constexpr std::array<std::string_view, 2> kHandNames = {"left", "right"};
+// A foot-switch button number meaning "not mapped".
+inline constexpr std::uint32_t kUnmappedPedalButton = 32;
+
 struct ConsoleSettings {
   std::array<TissueForceSettings, 5> force;
   Real device_max_force = Real(3.3);  // (unit: N)
@@ -45,6 +53,21 @@ struct ConsoleSettings {
   std::string left_buttons = "LeftButtons", right_buttons = "RightButtons";
   std::string pedal = "Pedal";
   std::string left_force = "LeftForce", right_force = "RightForce";
+  // Gamepad (SDL2): sticks move the hands as velocities; these buttons are named above.
+  Real gamepad_speed = Real(0.05);      // at full deflection (unit: m/s)
+  Real gamepad_dead_zone = Real(0.12);  // share of the stick's travel read as rest (-)
+  Real gamepad_reach = Real(0.15);      // a hand's range from its start per axis (unit: m)
+  std::string gamepad_cut_button = "a", gamepad_coag_button = "b";
+  std::string gamepad_left_clutch_button = "x", gamepad_right_clutch_button = "y";
+  // 3D mouse (spacenavd): one hand.
+  std::string spacemouse_hand = "right";
+  Real spacemouse_speed = Real(0.04);     // at full push (unit: m/s)
+  Real spacemouse_turn_rate = Real(1.0);  // at full twist (unit: rad/s)
+  Real spacemouse_dead_zone = Real(0.05);
+  std::uint32_t spacemouse_jaw_button = 0, spacemouse_clutch_button = 1;
+  // Foot pedals: a joystick's buttons (a USB foot switch).
+  std::string pedal_joystick = "any";  // a part of its name, or "any" non-gamepad joystick
+  std::uint32_t pedal_cut_button = 0, pedal_coag_button = 1, pedal_clutch_button = 2;
 };
 
 ConsoleSettings default_console_settings();

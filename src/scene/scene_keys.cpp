@@ -90,6 +90,12 @@ constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, k
     "devices." key, NameKeyRef{[](P& p) { return &p.console.member; }}, 1, 20, doc \
   }
 
+#define IMASIM_BUTTON_KEY(key, member, doc)                                       \
+  SceneKey {                                                                      \
+    "devices." key, ChoiceRef([](P& p) { return &p.console.member; }), 0, 0, doc, \
+        kGamepadButtonNames                                                       \
+  }
+
 const SceneKey kKeys[] = {
     {"anatomy.patient_seed", SeedRef([](P& p) { return &p.anatomy.patient_seed; }), 0, 9e18,
      "0 = the typical patient below; else a virtual patient varied about it (docs/anatomy.md)"},
@@ -284,9 +290,48 @@ const SceneKey kKeys[] = {
     IMASIM_NAME_KEY("pedal", pedal, "SENSOR name of [mode, power W] of the foot pedal"),
     IMASIM_NAME_KEY("left_force", left_force, "SENSOR name of the left hand's force out (N)"),
     IMASIM_NAME_KEY("right_force", right_force, "SENSOR name of the right hand's force out (N)"),
+
+    {"devices.gamepad_speed_m_per_s", RealRef([](P& p) { return &p.console.gamepad_speed; }), 0.001,
+     1, "gamepad: hand speed at full stick deflection"},
+    {"devices.gamepad_dead_zone", RealRef([](P& p) { return &p.console.gamepad_dead_zone; }), 0,
+     0.9, "gamepad: share of a stick's travel read as rest"},
+    {"devices.gamepad_reach_m", RealRef([](P& p) { return &p.console.gamepad_reach; }), 0.01, 1,
+     "gamepad: a hand's range from its start, per axis"},
+    IMASIM_BUTTON_KEY("gamepad_cut_button", gamepad_cut_button, "gamepad: pedal cut while held"),
+    IMASIM_BUTTON_KEY("gamepad_coag_button", gamepad_coag_button,
+                      "gamepad: pedal coagulation while held"),
+    IMASIM_BUTTON_KEY("gamepad_left_clutch_button", gamepad_left_clutch_button,
+                      "gamepad: left clutch while held"),
+    IMASIM_BUTTON_KEY("gamepad_right_clutch_button", gamepad_right_clutch_button,
+                      "gamepad: right clutch while held"),
+    {"devices.spacemouse_hand", ChoiceRef([](P& p) { return &p.console.spacemouse_hand; }), 0, 0,
+     "3D mouse: the hand it moves", kHandNames},
+    {"devices.spacemouse_speed_m_per_s", RealRef([](P& p) { return &p.console.spacemouse_speed; }),
+     0.001, 1, "3D mouse: hand speed at full push"},
+    {"devices.spacemouse_turn_rate_rad_per_s",
+     RealRef([](P& p) { return &p.console.spacemouse_turn_rate; }), 0, 10,
+     "3D mouse: hand turn rate at full twist"},
+    {"devices.spacemouse_dead_zone", RealRef([](P& p) { return &p.console.spacemouse_dead_zone; }),
+     0, 0.9, "3D mouse: share of full push read as rest"},
+    {"devices.spacemouse_jaw_button",
+     CountRef([](P& p) { return &p.console.spacemouse_jaw_button; }), 0, 1,
+     "3D mouse: the button that closes the jaw while held (0 or 1)"},
+    {"devices.spacemouse_clutch_button",
+     CountRef([](P& p) { return &p.console.spacemouse_clutch_button; }), 0, 1,
+     "3D mouse: the button that clutches while held (0 or 1)"},
+    IMASIM_NAME_KEY("pedal_joystick", pedal_joystick,
+                    "foot pedals: the joystick whose name contains this (\"any\": the first "
+                    "that is not a gamepad)"),
+    {"devices.pedal_cut_button", CountRef([](P& p) { return &p.console.pedal_cut_button; }), 0,
+     kUnmappedPedalButton, "foot pedals: the button for cut (32: none)"},
+    {"devices.pedal_coag_button", CountRef([](P& p) { return &p.console.pedal_coag_button; }), 0,
+     kUnmappedPedalButton, "foot pedals: the button for coagulation (32: none)"},
+    {"devices.pedal_clutch_button", CountRef([](P& p) { return &p.console.pedal_clutch_button; }),
+     0, kUnmappedPedalButton, "foot pedals: the button clutching both hands (32: none)"},
 };
 
 #undef IMASIM_STRAND_KEYS
+#undef IMASIM_BUTTON_KEY
 
 constexpr std::array<std::string_view, 17> kTables = {
     "anatomy",      "solver",    "heart",      "chest_wall",  "fascia",

@@ -87,6 +87,10 @@ SurfaceStop surface_stop(SurgicalSession& s, const Station& st, bool heart) {
     n = -radial(stop.point);
   }
   if (n.norm() > 0) stop.normal = n.normalized();
+  if (heart) {
+    stop.velocity = tissue::heart_surface_velocity(s.scene.heart, stop.point, Real(0.01),
+                                                   s.scene.patch.world.model.solver.dt);
+  }
   return stop;
 }
 
@@ -204,6 +208,13 @@ void record_contacts(SurgicalSession& s, std::uint8_t index, Station& st, double
 }
 
 }  // namespace
+
+Tissue tissue_of_particle(const SurgicalSession& s, std::uint32_t particle) {
+  const auto& objects = s.scene.patch.world.state.particles.object;
+  if (particle >= objects.size()) return Tissue::none;
+  const std::size_t object = objects[particle];
+  return object < s.object_tissue.size() ? s.object_tissue[object] : Tissue::none;
+}
 
 std::array<Vec3, 2> electrode(const SurgicalSession& s) {
   const Pose& p = s.stations[1].pose;
@@ -388,9 +399,18 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
                                        st.geometry, s.params.contact, dt, s.contacts);
     s.missed_tool_contacts += missed.inside;  // within the margin only is not a miss
     surgery::Tissue pressed = surgery::Tissue::none;
-    const Vec3 force = surgery::tissue_force_on_tool(
-        w.state.contacts, w.state.particles.object.data(), s.object_tissue.data(),
-        s.object_tissue.size(), kToolContactTag + k, dt, pressed);
+    Vec3 force = surgery::tissue_force_on_tool(w.state.contacts, w.state.particles.object.data(),
+                                               s.object_tissue.data(), s.object_tissue.size(),
+                                               kToolContactTag + k, dt, pressed);
+    if (k == 0 && !s.grasper.held.empty()) {
+      // Held tissue pulls on the jaws: retracting it is felt, and the proxy gives way to it.
+      const Vec3 pull =
+          surgery::grasp_force_on_jaws(w.state.particles, s.params.grasp,
+                                       surgery::world_pose(st.instrument, st.state), s.grasper);
+      if (pull.squaredNorm() > force.squaredNorm())
+        pressed = tissue_of_particle(s, s.grasper.held.front().particle);
+      force += pull;
+    }
     surgery::update_proxy(s.params.proxy, force, pressed, st.proxy);
     moved = moved || missed.count > 0;
     record_contacts(s, k, st, time);

@@ -52,6 +52,7 @@ struct SurfaceStop {
   surgery::Tissue tissue = surgery::Tissue::none;  // none: not stopped
   Vec3 point = Vec3::Zero();                       // (unit: m)
   Vec3 normal = Vec3::UnitZ();
+  Vec3 velocity = Vec3::Zero();  // of the surface there: the heart's wall moves (unit: m/s)
 };
 
 // One instrument at its port.

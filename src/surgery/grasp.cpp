@@ -63,4 +63,14 @@ std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params
   return static_cast<std::uint32_t>(g.held.size());
 }
 
+Vec3 grasp_force_on_jaws(const physics::Particles& particles, const GraspParams& params,
+                         const Pose& jaws, const Grasper& grasper) {
+  if (!(params.compliance > 0)) return Vec3::Zero();  // rigid holds carry no measurable force
+  Vec3 stretch = Vec3::Zero();
+  for (const Grasper::Hold& h : grasper.held)
+    if (h.particle < particles.size())
+      stretch += particles.position[h.particle] - jaws.apply(h.local);
+  return stretch / params.compliance;
+}
+
 }  // namespace imasim::surgery

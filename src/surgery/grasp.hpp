@@ -46,4 +46,12 @@ std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params
                            const InstrumentParams& instrument, const InstrumentState& state,
                            Grasper& grasper);
 
+// The pull of the held tissue on the jaws after a step (the tool proxy feels it; issue 13):
+// each attachment is a spring of the grasp's compliance alpha, so at the end of a converged
+// solve it carries f = (target - x) / alpha on its particle and the opposite on the jaws:
+//   F_jaws = sum_i (x_i - target_i) / alpha   (unit: N).
+// `jaws` is the tool frame the targets ride in (the pose update_grasp last used).
+Vec3 grasp_force_on_jaws(const physics::Particles& particles, const GraspParams& params,
+                         const Pose& jaws, const Grasper& grasper);
+
 }  // namespace imasim::surgery

@@ -186,6 +186,23 @@ Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
   return inside < 0 ? inside : outside;
 }
 
+Vec3 heart_surface_velocity(HeartField& h, const Vec3& p, Real search, Real dt) {
+  if (!(dt > 0)) return Vec3::Zero();
+  nearest_per_component(h, p, search);
+  const HeartField::Nearest* best = nullptr;
+  for (const HeartField::Nearest& n : h.nearest)
+    if (n.triangle != HeartField::kNone && (!best || n.distance2 < best->distance2)) best = &n;
+  if (!best) return Vec3::Zero();
+  const auto& tri = h.model.topology.triangles[best->triangle];
+  const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
+      p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
+  Vec3 v = Vec3::Zero();
+  for (int k = 0; k < 3; ++k)
+    v +=
+        q.bary[std::size_t(k)] * (h.current[tri[std::size_t(k)]] - h.previous[tri[std::size_t(k)]]);
+  return v / dt;
+}
+
 std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
                                  std::span<const Vec3> previous, Real min_search, Real inside) {
   geometry::Box bounds;
