@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenigtlink-dev  # OpenIGTLink messages for devices (issue 13)
   libsdl2-dev libspnav-dev  # gamepads and joysticks, 3D mice (issue 13)
+  libboost-math-dev  # the t distribution for the study statistics (issue 14)
 )
 
 missing=()

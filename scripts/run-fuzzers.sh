@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 build=${1:?build directory}
 seconds=${2:?seconds per target}
 targets=(scene_file input_script command_line mesh_obj mesh_stl mesh_ply mesh_gltf igtl_message
-  input_stream)
+  input_stream point_csv)
 mkdir -p "$build/fuzz-artifacts" "$build/fuzz-logs"
 export ASAN_OPTIONS="allocator_may_return_null=0:detect_leaks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"

@@ -12,35 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "cli_process.hpp"
+
 namespace {
 
-struct Finished {
-  int exit_code = -1;  // -1 when ended by a signal
-  int signal = 0;
-  std::string out, err;
-};
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs a shell command whose stderr goes to `err_path`, keeping stdout and stderr apart.
-Finished run_shell(const std::string& command, const std::string& err_path) {
-  FILE* pipe = popen(command.c_str(), "r");
-  Finished f;
-  if (pipe == nullptr) return f;
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr)
-    f.out += buffer.data();
-  const int status = pclose(pipe);
-  if (WIFEXITED(status)) f.exit_code = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) f.signal = WTERMSIG(status);
-  f.err = read_file(err_path);
-  return f;
-}
+using imasim::test::Finished;
+using imasim::test::read_file;
+using imasim::test::run_shell;
 
 const std::string kErrPath = ::testing::TempDir() + "imasim_outputs_stderr.txt";
 

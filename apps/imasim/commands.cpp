@@ -11,6 +11,8 @@ Commands add_commands(CLI::App& app) {
   c.haptics_bench = add_haptics_bench_command(app);
   c.device_emulator = add_device_emulator_command(app);
   c.devices = add_devices_command(app);
+  c.stats = add_stats_command(app);
+  c.sai = add_sai_command(app);
   return c;
 }
 
@@ -21,6 +23,8 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("haptics-bench")) return run_haptics_bench_command(*c.haptics_bench);
   if (app.got_subcommand("device-emulator")) return run_device_emulator_command(*c.device_emulator);
   if (app.got_subcommand("devices")) return run_devices_command(*c.devices);
+  if (app.got_subcommand("stats")) return run_stats_command(*c.stats);
+  if (app.got_subcommand("sai")) return run_sai_command(*c.sai);
   return 0;
 }
 

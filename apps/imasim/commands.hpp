@@ -9,7 +9,9 @@
 #include "devices_command.hpp"
 #include "haptics_bench_command.hpp"
 #include "run_command.hpp"
+#include "sai_command.hpp"
 #include "scene_command.hpp"
+#include "stats_command.hpp"
 
 namespace imasim::cli {
 
@@ -20,6 +22,8 @@ struct Commands {
   std::shared_ptr<HapticsBenchOptions> haptics_bench;
   std::shared_ptr<DeviceEmulatorOptions> device_emulator;
   std::shared_ptr<DevicesOptions> devices;
+  std::shared_ptr<StatsOptions> stats;
+  std::shared_ptr<SaiOptions> sai;
 };
 
 // Registers every subcommand on `app` (one is required).

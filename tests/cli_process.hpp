@@ -1,0 +1,42 @@
+#pragma once
+// Running `imasim` as a user does, for the command-line suites: a shell command whose stdout is
+// captured and whose stderr goes to a file, kept apart.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace imasim::test {
+
+struct Finished {
+  int exit_code = -1;  // -1 when ended by a signal
+  int signal = 0;
+  std::string out, err;
+};
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `command` (which sends its stderr to `err_path`), keeping stdout and stderr apart.
+inline Finished run_shell(const std::string& command, const std::string& err_path) {
+  FILE* pipe = popen(command.c_str(), "r");
+  Finished f;
+  if (pipe == nullptr) return f;
+  std::array<char, 4096> buffer;
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr)
+    f.out += buffer.data();
+  const int status = pclose(pipe);
+  if (WIFEXITED(status)) f.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) f.signal = WTERMSIG(status);
+  f.err = read_file(err_path);
+  return f;
+}
+
+}  // namespace imasim::test
