@@ -17,6 +17,7 @@
 namespace {
 
 using imasim::test::Finished;
+using imasim::test::lines_of;
 using imasim::test::read_file;
 using imasim::test::run_shell;
 
@@ -37,14 +38,6 @@ Finished run_until_stderr_says(const std::string& args, const std::string& text,
                        " ] && ! grep -q \"" + text + "\" " + kErrPath +
                        "; do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid'",
                    kErrPath);
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::stringstream s(text);
-  for (std::string line; std::getline(s, line);)
-    lines.push_back(line);
-  return lines;
 }
 
 const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";

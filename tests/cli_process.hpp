@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace imasim::test {
 
@@ -22,6 +23,14 @@ inline std::string read_file(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream s(text);
+  for (std::string line; std::getline(s, line);)
+    lines.push_back(line);
+  return lines;
 }
 
 // Runs `command` (which sends its stderr to `err_path`), keeping stdout and stderr apart.

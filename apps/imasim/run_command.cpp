@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli_checks.hpp"
+#include "console/console_settings_use.hpp"
 #include "console/input_stream.hpp"
 #include "interrupt.hpp"
 #include "live_inputs.hpp"
@@ -16,6 +17,7 @@
 #include "metrics/event_csv.hpp"
 #include "report.hpp"
 #include "run_progress.hpp"
+#include "run_recording.hpp"
 #include "scene/scene_file.hpp"
 #include "scene/solver_budget.hpp"
 #include "scene/thorax_scene.hpp"
@@ -27,6 +29,26 @@
 namespace imasim::cli {
 
 namespace {
+
+// What the recording's side file says was run.
+nlohmann::ordered_json recording_info(const RunOptions& o, const scene::ThoraxSceneParams& params,
+                                      const session::SurgicalSession& s, const std::string& devices,
+                                      bool replay) {
+  nlohmann::ordered_json j;
+  j["program"] = "imasim " IMASIM_VERSION;
+  j["scene"] = o.scene_file.empty() ? std::string("built-in thorax") : o.scene_file;
+  j["patient_seed"] = s.scene.patient.patient_seed;
+  j["heart"] = params.playback.beating ? "dynamic" : "static";
+  j["heart_rate_bpm"] = params.playback.heart_rate_bpm;
+  j["input"] = replay ? "replay" : devices;
+  if (!o.script_file.empty()) j["script"] = o.script_file;
+  if (replay) j["replay"] = o.replay_file;
+  const physics::SolverParams& solver = s.scene.patch.world.model.solver;
+  j["dt_s"] = solver.dt;
+  j["substeps"] = solver.substeps;
+  j["iterations"] = solver.iterations;
+  return j;
+}
 
 // The longest run: an hour of simulated time (a session lasts 10-30 minutes). Input scripts
 // stop at the same time (docs/input_script.md).
@@ -60,6 +82,11 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
                   "Play the script this many times in a row, one cycle every (its end + 0.5 s)")
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--events", opt->events_file, "Write the session's events to this CSV file")
+      ->check(non_empty());
+  cmd->add_option("--record", opt->record_file,
+                  "Record the session at 60 Hz: FILE.csv (tool tips, jaws, device poses, forces, "
+                  "pedal), FILE.json (what was run, the columns' units) and FILE.events.csv "
+                  "(unless --events names another file); docs/scoring.md")
       ->check(non_empty());
   cmd->add_flag("--static", opt->static_heart, "Freeze the heart at its static phase (70 %)");
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
@@ -187,15 +214,23 @@ int run_run_command(const RunOptions& o) {
     std::cerr << "imasim run: --repeat needs --script (it repeats the script)\n";
     return 2;
   }
+  if (!o.record_file.empty() && !instruments) {
+    std::cerr << "imasim run: --record needs instruments (--script, --devices or --replay)\n";
+    return 2;
+  }
+  const std::string events_file = !o.events_file.empty() ? o.events_file
+                                  : !o.record_file.empty()
+                                      ? RunRecording::events_path_of(o.record_file)
+                                      : std::string();
   std::optional<metrics::EventCsvWriter> events_out;
-  if (!o.events_file.empty()) {
+  if (!events_file.empty()) {
     if (!instruments) {
       std::cerr << "imasim run: --events needs instruments (--script, --devices or --replay)\n";
       return 2;
     }
     try {
       const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file};
-      events_out.emplace(metrics::OutputFile(o.events_file, "the events file", inputs));
+      events_out.emplace(metrics::OutputFile(events_file, "the events file", inputs));
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
@@ -209,7 +244,7 @@ int run_run_command(const RunOptions& o) {
       return 2;
     }
     try {
-      const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, o.events_file};
+      const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, events_file};
       record_out.emplace(o.record_input_file, "the input stream", inputs);
       record_out->write("# imasim input stream v1: one line a 5 ms step (docs/haptics.md)\n");
     } catch (const metrics::OutputError& e) {
@@ -235,6 +270,20 @@ int run_run_command(const RunOptions& o) {
   physics::Executor exec(o.threads);
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
+
+  std::optional<RunRecording> recording;
+  if (!o.record_file.empty()) {
+    try {
+      const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, events_file,
+                                    o.record_input_file};
+      recording.emplace(o.record_file, inputs, console::force_model_params(params.console),
+                        recording_info(o, params, *surgical, devices, replay.has_value()));
+      recording->sample(*surgical);  // the state before the first step
+    } catch (const metrics::OutputError& e) {
+      std::cerr << "imasim run: " << e.what() << '\n';
+      return 2;
+    }
+  }
 
   double seconds = o.seconds;
   const bool seconds_given = o.seconds_option && o.seconds_option->count() > 0;
@@ -328,6 +377,15 @@ int run_run_command(const RunOptions& o) {
           ima_motion,
           double((w.state.particles.position[i] - w.state.particles.rest_position[i]).norm()));
     }
+    if (recording) {
+      try {
+        recording->sample(*surgical);
+      } catch (const metrics::OutputError& e) {
+        output_failure = e.what();
+        ++done;
+        break;
+      }
+    }
     if (events_out) {
       try {
         events_out->append_new(surgical->events);
@@ -411,6 +469,18 @@ int run_run_command(const RunOptions& o) {
   if (output_failure) {
     out["status"] = "output_failed";
     out["output_error"] = *output_failure;
+  }
+  if (recording) {
+    try {
+      recording->finish(
+          {{"status", out["status"]}, {"steps", done}, {"simulated_s", w.state.time}});
+      out["recorded"] = o.record_file;
+      out["recorded_rows"] = recording->rows();
+    } catch (const metrics::OutputError& e) {
+      if (!output_failure) output_failure = e.what();
+      out["status"] = "output_failed";
+      out["output_error"] = *output_failure;
+    }
   }
   if (!print_report(out, o.json)) {
     std::cerr << "imasim run: cannot write the report to stdout\n";

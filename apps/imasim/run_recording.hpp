@@ -1,0 +1,45 @@
+#pragma once
+// `imasim run --record FILE.csv` (issue 14): the session's trajectory at 60 Hz in FILE.csv
+// (metrics/trajectory_recorder.hpp), a side file FILE.json (what was run, the columns' units and
+// meanings; written at the start so that a killed run still has it, and again at the end with
+// how the run ended), and the events in FILE.events.csv unless --events names another file.
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+
+#include "haptics/force_params.hpp"
+#include "metrics/trajectory_recorder.hpp"
+#include "session/surgical_session.hpp"
+
+namespace imasim::cli {
+
+class RunRecording {
+ public:
+  // Opens FILE.csv and writes FILE.json; throws metrics::OutputError (also when either would
+  // overwrite one of `inputs`).
+  RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
+               const haptics::ForceModelParams& forces, const nlohmann::ordered_json& run);
+
+  // A row when one is due at the session's time (call at the start and after each step).
+  void sample(const session::SurgicalSession& session);
+  // Closes the CSV and rewrites the side file with `ending` (status, steps, rows).
+  void finish(const nlohmann::ordered_json& ending);
+
+  std::size_t rows() const { return trajectory_.rows(); }
+  const std::string& side_path() const { return side_path_; }
+
+  // FILE.csv -> FILE.json and FILE.events.csv (a path without .csv gets the suffix added).
+  static std::string side_path_of(const std::string& csv_path);
+  static std::string events_path_of(const std::string& csv_path);
+
+ private:
+  void write_side(const nlohmann::ordered_json& run);
+
+  metrics::TrajectoryRecorder trajectory_;
+  haptics::ForceModelParams forces_;
+  std::string side_path_;
+  std::vector<std::string> inputs_;
+  nlohmann::ordered_json run_;
+};
+
+}  // namespace imasim::cli

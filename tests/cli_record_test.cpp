@@ -1,0 +1,98 @@
+// `imasim run --record FILE.csv` as a user meets it: a 60 Hz CSV whose every line has a field per
+// column, a side file naming each column, the events beside it, and a run killed with SIGKILL
+// leaving whole rows up to its last flush.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_process.hpp"
+
+namespace {
+
+using imasim::test::Finished;
+using imasim::test::lines_of;
+using imasim::test::read_file;
+
+const std::string kDir = ::testing::TempDir();
+const std::string kErr = kDir + "imasim_record_stderr.txt";
+const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
+
+Finished run(const std::string& args, const std::string& prefix = "") {
+  return imasim::test::run_shell(prefix + " " + std::string(IMASIM_EXE) + " " + args + " 2>" + kErr,
+                                 kErr);
+}
+
+std::size_t field_count(const std::string& line) {
+  return std::size_t(std::count(line.begin(), line.end(), ',')) + 1;
+}
+
+TEST(RunRecord, SixtyHertzRowsASideFileAndTheEvents) {
+  const std::string csv = kDir + "imasim_record_run.csv";
+  const Finished f = run("run --headless --script " + kScript + " --seconds 1 --threads 1 " +
+                         "--record " + csv + " --json");
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const nlohmann::json report = nlohmann::json::parse(f.out);
+  EXPECT_EQ(report["recorded_rows"], 61);  // 0 to 1 s at 60 Hz
+  const std::string text = read_file(csv);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  const std::vector<std::string> lines = lines_of(text);
+  ASSERT_EQ(lines.size(), 62u);
+  const std::size_t columns = field_count(lines[0]);
+  for (const std::string& line : lines)
+    EXPECT_EQ(field_count(line), columns) << line;
+  EXPECT_EQ(lines[0].rfind("t_s,forceps_x,forceps_y,forceps_z,", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[1].rfind("0,", 0), 0u) << lines[1];  // the state before the first step
+  // The cautery cuts from 0.5 s: the pedal column says so.
+  EXPECT_NE(lines.back().find(",cut,40"), std::string::npos) << lines.back();
+
+  const nlohmann::json side = nlohmann::json::parse(read_file(kDir + "imasim_record_run.json"));
+  EXPECT_EQ(side["rate_hz"], 60);
+  EXPECT_EQ(side["run"]["heart"], "dynamic");
+  EXPECT_EQ(side["run"]["status"], "ok");
+  EXPECT_EQ(side["run"]["rows"], 61);
+  ASSERT_EQ(side["columns"].size(), columns);
+  EXPECT_EQ(side["columns"][0]["name"], "t_s");
+  const std::string events = read_file(kDir + "imasim_record_run.events.csv");
+  EXPECT_NE(events.find(",cautery_on,right,"), std::string::npos) << events;
+}
+
+TEST(RunRecord, AKilledRunKeepsWholeRowsUpToItsLastFlush) {
+  const std::string csv = kDir + "imasim_record_killed.csv";
+  const Finished f = run("run --headless --script " + kScript + " --seconds 60 --threads 1 " +
+                             "--record " + csv + " --json",
+                         "timeout -s KILL 5");
+  EXPECT_EQ(f.exit_code, 137);
+  const std::string text = read_file(csv);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');  // never half a row
+  const std::vector<std::string> lines = lines_of(text);
+  ASSERT_GE(lines.size(), 2u);  // rows flushed before the kill (the first step's at least)
+  for (const std::string& line : lines)
+    EXPECT_EQ(field_count(line), field_count(lines[0])) << line;
+  // The side file was written at the start: the recording can be read without the run's end.
+  const nlohmann::json side = nlohmann::json::parse(read_file(kDir + "imasim_record_killed.json"));
+  EXPECT_FALSE(side["run"].contains("status"));
+  EXPECT_EQ(side["columns"].size(), field_count(lines[0]));
+}
+
+TEST(RunRecord, NeedsInstrumentsAndRefusesToOverwriteAnInput) {
+  const Finished bare = run("run --headless --seconds 0.1 --record " + kDir + "imasim_r.csv");
+  EXPECT_EQ(bare.exit_code, 2);
+  EXPECT_NE(bare.err.find("--record needs instruments"), std::string::npos) << bare.err;
+  // The script itself named as the recording (a copy, so nothing lands beside the sources).
+  const std::string script = kDir + "imasim_record_input.csv";
+  { std::ofstream(script) << read_file(kScript); }
+  const Finished over =
+      run("run --headless --script " + script + " --seconds 0.1 --record " + script);
+  EXPECT_EQ(over.exit_code, 2);
+  EXPECT_NE(over.err.find("imasim_record_input.csv"), std::string::npos) << over.err;
+  EXPECT_EQ(read_file(script), read_file(kScript));  // untouched
+}
+
+}  // namespace
