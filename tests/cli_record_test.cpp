@@ -60,6 +60,27 @@ TEST(RunRecord, SixtyHertzRowsASideFileAndTheEvents) {
   EXPECT_EQ(side["columns"][0]["name"], "t_s");
   const std::string events = read_file(kDir + "imasim_record_run.events.csv");
   EXPECT_NE(events.find(",cautery_on,right,"), std::string::npos) << events;
+
+  // The run scores its recording (eq. 20), and `imasim sai` on the files it wrote agrees.
+  ASSERT_TRUE(report.contains("sai")) << f.out;
+  EXPECT_EQ(report["sai"]["radius_m"], 0.002);
+  EXPECT_EQ(side["run"]["sai"], report["sai"]);
+  for (const std::string tool : {"forceps", "hook"}) {
+    const nlohmann::json mine = report["sai"][tool];
+    EXPECT_EQ(mine["samples"], 61) << tool;
+    const Finished again = run("sai --trajectory " + csv + " --tool " + tool + " --centerline " +
+                               kDir + "imasim_record_run.centerline.csv --heart " + kDir +
+                               "imasim_record_run.heart.obj --json");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    const nlohmann::json theirs = nlohmann::json::parse(again.out);
+    EXPECT_EQ(theirs["samples"], 61) << tool;
+    // The CSV keeps 9 significant digits of each tip: a few nanometres.
+    EXPECT_NEAR(theirs["sai"].get<double>(), mine["sai"].get<double>(), 1e-5) << tool;
+    EXPECT_NEAR(theirs["mean_distance_m"].get<double>(), mine["mean_distance_m"].get<double>(),
+                1e-8)
+        << tool;
+    EXPECT_EQ(theirs["heart_side_fraction"], mine["heart_side_fraction"]) << tool;
+  }
 }
 
 TEST(RunRecord, AKilledRunKeepsWholeRowsUpToItsLastFlush) {

@@ -92,7 +92,7 @@ TEST(SaiCommand, AKnownTrajectoryWithExactlyTheContractsKeys) {
   EXPECT_NEAR(nlohmann::json::parse(r1.out)["sai"].get<double>(), 2.5, 1e-12);
   const std::string recorded = kDir + "imasim_sai_recorded.csv";
   write(recorded,
-        "t,forceps_x,forceps_y,forceps_z,hook_x,hook_y,hook_z\n"
+        "t_s,forceps_x,forceps_y,forceps_z,hook_x,hook_y,hook_z\n"
         "0,9,9,9,0.004,0,0.01\n0.0167,9,9,9,0.004,0,0.02\n0.0333,9,9,9,0.004,0,0.03\n"
         "0.05,9,9,9,-0.002,0,0.04\n");
   const Finished hook = run("sai --trajectory " + recorded + " --centerline " + line + " --heart " +

@@ -277,10 +277,14 @@ int run_run_command(const RunOptions& o) {
       const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, events_file,
                                     o.record_input_file};
       recording.emplace(o.record_file, inputs, console::force_model_params(params.console),
-                        recording_info(o, params, *surgical, devices, replay.has_value()));
+                        recording_info(o, params, *surgical, devices, replay.has_value()),
+                        *surgical);
       recording->sample(*surgical);  // the state before the first step
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
+      return 2;
+    } catch (const metrics::SaiError& e) {
+      std::cerr << "imasim run: cannot score this scene: " << e.what() << '\n';
       return 2;
     }
   }
@@ -472,7 +476,7 @@ int run_run_command(const RunOptions& o) {
   }
   if (recording) {
     try {
-      recording->finish(
+      out["sai"] = recording->finish(
           {{"status", out["status"]}, {"steps", done}, {"simulated_s", w.state.time}});
       out["recorded"] = o.record_file;
       out["recorded_rows"] = recording->rows();

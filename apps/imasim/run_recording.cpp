@@ -2,6 +2,8 @@
 
 #include "console/trajectory_sample.hpp"
 
+#include <cstdio>
+
 namespace imasim::cli {
 
 namespace {
@@ -23,16 +25,75 @@ std::string RunRecording::events_path_of(const std::string& csv) {
   return stem_of(csv) + ".events.csv";
 }
 
+std::string RunRecording::centerline_path_of(const std::string& csv) {
+  return stem_of(csv) + ".centerline.csv";
+}
+
+std::string RunRecording::heart_path_of(const std::string& csv) {
+  return stem_of(csv) + ".heart.obj";
+}
+
+namespace {
+
+// The heart at its static phase (the paper's 70 % reference): its side of the IMA.
+geometry::TriangleMesh static_heart(const session::SurgicalSession& s) {
+  geometry::TriangleMesh m;
+  m.vertices = s.scene.heart.reference;
+  m.triangles = s.scene.heart.model.topology.triangles;
+  return m;
+}
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);  // exact: the scores read back the same
+  return text;
+}
+
+void write_centerline(const std::string& path, std::span<const std::string> inputs,
+                      const std::vector<Vec3>& centerline) {
+  metrics::OutputFile f(path, "the centerline file", inputs);
+  f.write("x,y,z\n");
+  for (const Vec3& p : centerline)
+    f.write(number(p.x()) + "," + number(p.y()) + "," + number(p.z()) + "\n");
+  f.close();
+}
+
+void write_obj(const std::string& path, std::span<const std::string> inputs,
+               const geometry::TriangleMesh& m) {
+  metrics::OutputFile f(path, "the heart file", inputs);
+  f.write("# imasim: the heart at its static phase, metres\n");
+  for (const Vec3& v : m.vertices)
+    f.write("v " + number(v.x()) + " " + number(v.y()) + " " + number(v.z()) + "\n");
+  for (const geometry::Triangle& t : m.triangles)
+    f.write("f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+            std::to_string(t[2] + 1) + "\n");
+  f.close();
+}
+
+nlohmann::ordered_json sai_report(const metrics::SaiResult& r) {
+  return {{"sai", r.sai},
+          {"samples", r.samples},
+          {"mean_distance_m", r.mean_distance},
+          {"heart_side_fraction", r.heart_side_fraction}};
+}
+
+}  // namespace
+
 RunRecording::RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
                            const haptics::ForceModelParams& forces,
-                           const nlohmann::ordered_json& run)
+                           const nlohmann::ordered_json& run, const session::SurgicalSession& s)
     : trajectory_(metrics::OutputFile(csv_path, "the trajectory file", inputs)),
+      side_(metrics::make_side_reference(s.scene.layout.ima_centerline, static_heart(s))),
       forces_(forces),
       side_path_(side_path_of(csv_path)),
       inputs_(inputs.begin(), inputs.end()),
       run_(run) {
   inputs_.push_back(csv_path);
+  run_["centerline_file"] = centerline_path_of(csv_path);
+  run_["heart_file"] = heart_path_of(csv_path);
   write_side(run_);
+  write_centerline(centerline_path_of(csv_path), inputs_, side_.centerline);
+  write_obj(heart_path_of(csv_path), inputs_, static_heart(s));
 }
 
 void RunRecording::write_side(const nlohmann::ordered_json& run) {
@@ -44,17 +105,27 @@ void RunRecording::write_side(const nlohmann::ordered_json& run) {
 }
 
 void RunRecording::sample(const session::SurgicalSession& s) {
-  if (trajectory_.due(s.scene.patch.world.state.time))
-    trajectory_.record(console::trajectory_sample(s, forces_));
+  if (!trajectory_.due(s.scene.patch.world.state.time)) return;
+  const metrics::TrajectorySample row = console::trajectory_sample(s, forces_);
+  trajectory_.record(row);
+  for (std::size_t k = 0; k < 2; ++k)
+    tips_[k].push_back(row.tools[k].tip);
 }
 
-void RunRecording::finish(const nlohmann::ordered_json& ending) {
+nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending) {
   trajectory_.finish();
+  nlohmann::ordered_json scores;
+  scores["radius_m"] = metrics::kSaiRadius;
+  for (std::size_t k = 0; k < 2; ++k)
+    scores[std::string(metrics::kToolNames[k])] =
+        sai_report(metrics::spatial_asymmetry(side_, tips_[k]));
   nlohmann::ordered_json run = run_;
   for (auto it = ending.begin(); it != ending.end(); ++it)
     run[it.key()] = it.value();
   run["rows"] = trajectory_.rows();
+  run["sai"] = scores;
   write_side(run);
+  return scores;
 }
 
 }  // namespace imasim::cli

@@ -2,12 +2,18 @@
 // `imasim run --record FILE.csv` (issue 14): the session's trajectory at 60 Hz in FILE.csv
 // (metrics/trajectory_recorder.hpp), a side file FILE.json (what was run, the columns' units and
 // meanings; written at the start so that a killed run still has it, and again at the end with
-// how the run ended), and the events in FILE.events.csv unless --events names another file.
+// how the run ended and its scores), the events in FILE.events.csv unless --events names another
+// file, and what `imasim sai` needs to score the recording again: the IMA's centerline
+// (FILE.centerline.csv) and the heart at its static phase (FILE.heart.obj), from which the run
+// scores each instrument's tips by eq. 20 itself.
+#include <array>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "haptics/force_params.hpp"
+#include "metrics/spatial_asymmetry.hpp"
 #include "metrics/trajectory_recorder.hpp"
 #include "session/surgical_session.hpp"
 
@@ -15,15 +21,17 @@ namespace imasim::cli {
 
 class RunRecording {
  public:
-  // Opens FILE.csv and writes FILE.json; throws metrics::OutputError (also when either would
-  // overwrite one of `inputs`).
+  // Opens FILE.csv and writes FILE.json, FILE.centerline.csv and FILE.heart.obj; throws
+  // metrics::OutputError (also when one would overwrite one of `inputs`).
   RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
-               const haptics::ForceModelParams& forces, const nlohmann::ordered_json& run);
+               const haptics::ForceModelParams& forces, const nlohmann::ordered_json& run,
+               const session::SurgicalSession& session);
 
   // A row when one is due at the session's time (call at the start and after each step).
   void sample(const session::SurgicalSession& session);
-  // Closes the CSV and rewrites the side file with `ending` (status, steps, rows).
-  void finish(const nlohmann::ordered_json& ending);
+  // Closes the CSV and rewrites the side file with `ending` (status, steps, rows) and the
+  // scores; returns the scores: the SAI of each instrument's tips (eq. 20, R = 2 mm).
+  nlohmann::ordered_json finish(const nlohmann::ordered_json& ending);
 
   std::size_t rows() const { return trajectory_.rows(); }
   const std::string& side_path() const { return side_path_; }
@@ -31,11 +39,15 @@ class RunRecording {
   // FILE.csv -> FILE.json and FILE.events.csv (a path without .csv gets the suffix added).
   static std::string side_path_of(const std::string& csv_path);
   static std::string events_path_of(const std::string& csv_path);
+  static std::string centerline_path_of(const std::string& csv_path);
+  static std::string heart_path_of(const std::string& csv_path);
 
  private:
   void write_side(const nlohmann::ordered_json& run);
 
   metrics::TrajectoryRecorder trajectory_;
+  metrics::SideReference side_;
+  std::array<std::vector<Vec3>, 2> tips_;  // every recorded row's tips, for the scores
   haptics::ForceModelParams forces_;
   std::string side_path_;
   std::vector<std::string> inputs_;

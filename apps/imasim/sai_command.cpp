@@ -28,8 +28,9 @@ std::shared_ptr<SaiOptions> add_sai_command(CLI::App& app) {
   cmd->add_option("--radius", opt->radius, "R of eq. 20 (m)")
       ->capture_default_str()
       ->check(finite_range(1e-6, 1));
-  cmd->add_option("--tool", opt->tool,
-                  "In the recorder's file, the tool whose columns NAME_x, NAME_y, NAME_z to use")
+  cmd->add_option(
+         "--tool", opt->tool,
+         "In the recorder's file (time t_s), the tool whose columns NAME_x, NAME_y, NAME_z to use")
       ->check(non_empty());
   cmd->add_option("--heart-scale", opt->heart_scale, "Heart mesh units to m (0.001: mm)")
       ->capture_default_str()

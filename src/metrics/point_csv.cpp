@@ -55,7 +55,7 @@ PointSeries parse_point_csv(const std::string& text, const std::string& path,
     if (header_line == 0) {
       header_line = line_no;
       header_fields = fields.size();
-      for (int k = 0; k < 4; ++k) {
+      for (const int k : {1, 2, 3, 0}) {  // a tool's columns first: the likelier mistake
         if (wanted[k].empty()) continue;
         for (std::size_t f = 0; f < fields.size(); ++f)
           if (fields[f] == wanted[k]) column[k] = int(f);
@@ -98,7 +98,8 @@ PointSeries load_point_csv(const std::string& path, const std::string& x_column,
 }
 
 PointSeries load_trajectory_csv(const std::string& path, const std::string& tool) {
-  return load_point_csv(path, tool.empty() ? "x" : tool + "_x", "t");
+  // The recorder names its time column by its unit, as its other columns are named.
+  return tool.empty() ? load_point_csv(path, "x", "t") : load_point_csv(path, tool + "_x", "t_s");
 }
 
 PointSeries load_centerline_csv(const std::string& path) {

@@ -1,6 +1,6 @@
 #pragma once
 // Points from CSV files for the scores (SPEC S6): a tool trajectory, either a plain file with
-// the header `t,x,y,z` or the recorder's file with columns `t,<tool>_x,<tool>_y,<tool>_z`; an IMA
+// the header `t,x,y,z` or the recorder's file with columns `t_s,<tool>_x,<tool>_y,<tool>_z`; an IMA
 // centerline with the header `x,y,z`. Metres, comma-separated, one row a point; blank lines and
 // a final newline are fine, CRLF too. Errors name the file, the line and the column.
 #include <stdexcept>
