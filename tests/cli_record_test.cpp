@@ -62,11 +62,24 @@ TEST(RunRecord, SixtyHertzRowsASideFileAndTheEvents) {
   EXPECT_NE(events.find(",cautery_on,right,"), std::string::npos) << events;
 
   // The run scores its recording (eq. 20), and `imasim sai` on the files it wrote agrees.
-  ASSERT_TRUE(report.contains("sai")) << f.out;
-  EXPECT_EQ(report["sai"]["radius_m"], 0.002);
-  EXPECT_EQ(side["run"]["sai"], report["sai"]);
+  ASSERT_TRUE(report.contains("scores")) << f.out;
+  const nlohmann::json& scores = report["scores"];
+  EXPECT_EQ(scores["sai"]["radius_m"], 0.002);
+  EXPECT_EQ(side["run"]["scores"], scores);
+  // Every trainee metric with its threshold and verdict.
+  EXPECT_EQ(scores["metrics"].size(), scores["metrics_total"]);
+  EXPECT_GE(scores["metrics"].size(), 15u);
+  for (const auto& m : scores["metrics"]) {
+    EXPECT_TRUE(m.contains("threshold") && m.contains("pass") && m.contains("unit")) << m;
+    if (m["name"] == "cautery_on_s") {
+      EXPECT_NEAR(m["value"].get<double>(), 0.5, 0.02) << m;  // the pedal from 0.5 s
+    }
+    if (m["name"] == "time_to_complete_s") {
+      EXPECT_NEAR(m["value"].get<double>(), 1.0, 1e-9) << m;
+    }
+  }
   for (const std::string tool : {"forceps", "hook"}) {
-    const nlohmann::json mine = report["sai"][tool];
+    const nlohmann::json mine = scores["sai"][tool];
     EXPECT_EQ(mine["samples"], 61) << tool;
     const Finished again = run("sai --trajectory " + csv + " --tool " + tool + " --centerline " +
                                kDir + "imasim_record_run.centerline.csv --heart " + kDir +

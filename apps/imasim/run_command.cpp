@@ -278,7 +278,7 @@ int run_run_command(const RunOptions& o) {
                                     o.record_input_file};
       recording.emplace(o.record_file, inputs, console::force_model_params(params.console),
                         recording_info(o, params, *surgical, devices, replay.has_value()),
-                        *surgical);
+                        *surgical, params.patch.vessel.radius);
       recording->sample(*surgical);  // the state before the first step
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
@@ -476,8 +476,8 @@ int run_run_command(const RunOptions& o) {
   }
   if (recording) {
     try {
-      out["sai"] = recording->finish(
-          {{"status", out["status"]}, {"steps", done}, {"simulated_s", w.state.time}});
+      out["scores"] = recording->finish(
+          {{"status", out["status"]}, {"steps", done}, {"simulated_s", w.state.time}}, *surgical);
       out["recorded"] = o.record_file;
       out["recorded_rows"] = recording->rows();
     } catch (const metrics::OutputError& e) {

@@ -1,6 +1,7 @@
 #include "run_recording.hpp"
 
 #include "console/trajectory_sample.hpp"
+#include "metrics/trainee_metrics.hpp"
 
 #include <cstdio>
 
@@ -81,9 +82,11 @@ nlohmann::ordered_json sai_report(const metrics::SaiResult& r) {
 
 RunRecording::RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
                            const haptics::ForceModelParams& forces,
-                           const nlohmann::ordered_json& run, const session::SurgicalSession& s)
+                           const nlohmann::ordered_json& run, const session::SurgicalSession& s,
+                           Real ima_radius)
     : trajectory_(metrics::OutputFile(csv_path, "the trajectory file", inputs)),
       side_(metrics::make_side_reference(s.scene.layout.ima_centerline, static_heart(s))),
+      ima_radius_(ima_radius),
       forces_(forces),
       side_path_(side_path_of(csv_path)),
       inputs_(inputs.begin(), inputs.end()),
@@ -108,22 +111,49 @@ void RunRecording::sample(const session::SurgicalSession& s) {
   if (!trajectory_.due(s.scene.patch.world.state.time)) return;
   const metrics::TrajectorySample row = console::trajectory_sample(s, forces_);
   trajectory_.record(row);
-  for (std::size_t k = 0; k < 2; ++k)
-    tips_[k].push_back(row.tools[k].tip);
+  rows_.push_back(row);
 }
 
-nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending) {
+nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending,
+                                            const session::SurgicalSession& s) {
   trajectory_.finish();
   nlohmann::ordered_json scores;
-  scores["radius_m"] = metrics::kSaiRadius;
-  for (std::size_t k = 0; k < 2; ++k)
-    scores[std::string(metrics::kToolNames[k])] =
-        sai_report(metrics::spatial_asymmetry(side_, tips_[k]));
+  nlohmann::ordered_json sai;
+  sai["radius_m"] = metrics::kSaiRadius;
+  for (std::size_t k = 0; k < 2; ++k) {
+    std::vector<Vec3> tips;
+    tips.reserve(rows_.size());
+    for (const metrics::TrajectorySample& r : rows_)
+      tips.push_back(r.tools[k].tip);
+    sai[std::string(metrics::kToolNames[k])] = sai_report(metrics::spatial_asymmetry(side_, tips));
+  }
+  scores["sai"] = sai;
+  metrics::SessionTotals totals;
+  const tissue::TissueWorld& w = s.scene.patch.world;
+  totals.strands_total = w.strands[s.scene.patch.ima_fat].strand_count +
+                         w.strands[s.scene.patch.fascia_fat].strand_count;
+  totals.strands_cut = s.strands_cut;
+  totals.ima_radius = ima_radius_;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  std::size_t passed = 0;
+  for (const metrics::TraineeMetric& m : metrics::trainee_metrics(rows_, s.events, side_, totals)) {
+    list.push_back({{"name", m.name},
+                    {"value", m.value},
+                    {"unit", m.unit},
+                    {"threshold", m.threshold},
+                    {"better", m.higher_is_better ? "higher" : "lower"},
+                    {"pass", m.pass},
+                    {"meaning", m.meaning}});
+    passed += m.pass ? 1 : 0;
+  }
+  scores["metrics"] = list;
+  scores["metrics_passed"] = passed;
+  scores["metrics_total"] = list.size();
   nlohmann::ordered_json run = run_;
   for (auto it = ending.begin(); it != ending.end(); ++it)
     run[it.key()] = it.value();
   run["rows"] = trajectory_.rows();
-  run["sai"] = scores;
+  run["scores"] = scores;
   write_side(run);
   return scores;
 }

@@ -6,7 +6,6 @@
 // file, and what `imasim sai` needs to score the recording again: the IMA's centerline
 // (FILE.centerline.csv) and the heart at its static phase (FILE.heart.obj), from which the run
 // scores each instrument's tips by eq. 20 itself.
-#include <array>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -25,13 +24,15 @@ class RunRecording {
   // metrics::OutputError (also when one would overwrite one of `inputs`).
   RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
                const haptics::ForceModelParams& forces, const nlohmann::ordered_json& run,
-               const session::SurgicalSession& session);
+               const session::SurgicalSession& session, Real ima_radius);
 
   // A row when one is due at the session's time (call at the start and after each step).
   void sample(const session::SurgicalSession& session);
   // Closes the CSV and rewrites the side file with `ending` (status, steps, rows) and the
-  // scores; returns the scores: the SAI of each instrument's tips (eq. 20, R = 2 mm).
-  nlohmann::ordered_json finish(const nlohmann::ordered_json& ending);
+  // scores; returns them: the SAI of each instrument's tips (eq. 20, R = 2 mm) and the trainee
+  // metrics with their thresholds and pass or fail (metrics/trainee_metrics.hpp).
+  nlohmann::ordered_json finish(const nlohmann::ordered_json& ending,
+                                const session::SurgicalSession& session);
 
   std::size_t rows() const { return trajectory_.rows(); }
   const std::string& side_path() const { return side_path_; }
@@ -47,7 +48,8 @@ class RunRecording {
 
   metrics::TrajectoryRecorder trajectory_;
   metrics::SideReference side_;
-  std::array<std::vector<Vec3>, 2> tips_;  // every recorded row's tips, for the scores
+  std::vector<metrics::TrajectorySample> rows_;  // every recorded row, for the scores
+  Real ima_radius_ = 0;
   haptics::ForceModelParams forces_;
   std::string side_path_;
   std::vector<std::string> inputs_;
