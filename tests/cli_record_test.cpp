@@ -115,6 +115,36 @@ TEST(RunRecord, AKilledRunKeepsWholeRowsUpToItsLastFlush) {
   EXPECT_EQ(side["columns"].size(), field_count(lines[0]));
 }
 
+TEST(RunRecord, AThresholdsFileSetsThePassMarks) {
+  const std::string csv = kDir + "imasim_record_thresholds.csv";
+  const std::string thresholds = kDir + "imasim_thresholds.json";
+  { std::ofstream(thresholds) << "{\"time_to_complete_s\": 0.5}\n"; }
+  const Finished f = run("run --headless --script " + kScript + " --seconds 1 --threads 1 " +
+                         "--record " + csv + " --thresholds " + thresholds + " --json");
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  bool seen = false;
+  const nlohmann::json report = nlohmann::json::parse(f.out);
+  for (const auto& m : report["scores"]["metrics"]) {
+    if (m["name"] != "time_to_complete_s") continue;
+    seen = true;
+    EXPECT_EQ(m["threshold"], 0.5);
+    EXPECT_EQ(m["pass"], false);  // 1 s > 0.5 s
+  }
+  EXPECT_TRUE(seen);
+  { std::ofstream(thresholds) << "{\n  \"heart_contact\": 1\n}\n"; }
+  const Finished bad = run("run --headless --script " + kScript + " --seconds 0.1 --record " + csv +
+                           " --thresholds " + thresholds);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find(thresholds + ":2: 'heart_contact' is no metric; did you mean "
+                                      "'heart_contacts'?"),
+            std::string::npos)
+      << bad.err;
+  const Finished alone =
+      run("run --headless --script " + kScript + " --seconds 0.1 --thresholds " + thresholds);
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.err.find("--thresholds goes with --record"), std::string::npos) << alone.err;
+}
+
 TEST(RunRecord, NeedsInstrumentsAndRefusesToOverwriteAnInput) {
   const Finished bare = run("run --headless --seconds 0.1 --record " + kDir + "imasim_r.csv");
   EXPECT_EQ(bare.exit_code, 2);

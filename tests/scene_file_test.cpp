@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "math/edit_distance.hpp"
 #include "physics/executor.hpp"
 #include "scene/scene_file.hpp"
 #include "session/surgical_session.hpp"

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "live_inputs.hpp"
 #include "math/state_hash.hpp"
 #include "metrics/event_csv.hpp"
+#include "metrics/threshold_file.hpp"
 #include "report.hpp"
 #include "run_progress.hpp"
 #include "run_recording.hpp"
@@ -87,6 +89,10 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
                   "Record the session at 60 Hz: FILE.csv (tool tips, jaws, device poses, forces, "
                   "pedal), FILE.json (what was run, the columns' units) and FILE.events.csv "
                   "(unless --events names another file); docs/scoring.md")
+      ->check(non_empty());
+  cmd->add_option("--thresholds", opt->thresholds_file,
+                  "With --record: proficiency thresholds, a JSON object of metric name to "
+                  "threshold, replacing the defaults (docs/scoring.md)")
       ->check(non_empty());
   cmd->add_flag("--static", opt->static_heart, "Freeze the heart at its static phase (70 %)");
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
@@ -218,6 +224,19 @@ int run_run_command(const RunOptions& o) {
     std::cerr << "imasim run: --record needs instruments (--script, --devices or --replay)\n";
     return 2;
   }
+  std::map<std::string, double> thresholds;
+  if (!o.thresholds_file.empty()) {
+    if (o.record_file.empty()) {
+      std::cerr << "imasim run: --thresholds goes with --record (they score the recording)\n";
+      return 2;
+    }
+    try {
+      thresholds = metrics::load_threshold_file(o.thresholds_file);
+    } catch (const metrics::ThresholdFileError& e) {
+      std::cerr << e.what() << '\n';
+      return 2;
+    }
+  }
   const std::string events_file = !o.events_file.empty() ? o.events_file
                                   : !o.record_file.empty()
                                       ? RunRecording::events_path_of(o.record_file)
@@ -274,11 +293,11 @@ int run_run_command(const RunOptions& o) {
   std::optional<RunRecording> recording;
   if (!o.record_file.empty()) {
     try {
-      const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, events_file,
-                                    o.record_input_file};
+      const std::string inputs[] = {o.scene_file, o.script_file,       o.replay_file,
+                                    events_file,  o.record_input_file, o.thresholds_file};
       recording.emplace(o.record_file, inputs, console::force_model_params(params.console),
                         recording_info(o, params, *surgical, devices, replay.has_value()),
-                        *surgical, params.patch.vessel.radius);
+                        *surgical, params.patch.vessel.radius, thresholds);
       recording->sample(*surgical);  // the state before the first step
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';

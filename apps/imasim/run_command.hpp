@@ -31,6 +31,7 @@ struct RunOptions {
   std::string replay_file;
   std::string record_input_file;  // empty: not recorded; else every step's input written there
   std::string record_file;        // empty: no trajectory; else the 60 Hz recording (CSV + JSON)
+  std::string thresholds_file;    // empty: the metrics' default thresholds
   std::optional<std::string> igtl_address;  // unset: the scene file's (devices.igtl_address)
   std::optional<std::uint16_t> igtl_port;   // unset: the scene file's (devices.igtl_port)
   bool igtl_client = false;

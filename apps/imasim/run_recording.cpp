@@ -83,10 +83,11 @@ nlohmann::ordered_json sai_report(const metrics::SaiResult& r) {
 RunRecording::RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
                            const haptics::ForceModelParams& forces,
                            const nlohmann::ordered_json& run, const session::SurgicalSession& s,
-                           Real ima_radius)
+                           Real ima_radius, const std::map<std::string, double>& thresholds)
     : trajectory_(metrics::OutputFile(csv_path, "the trajectory file", inputs)),
       side_(metrics::make_side_reference(s.scene.layout.ima_centerline, static_heart(s))),
       ima_radius_(ima_radius),
+      thresholds_(thresholds),
       forces_(forces),
       side_path_(side_path_of(csv_path)),
       inputs_(inputs.begin(), inputs.end()),
@@ -136,7 +137,8 @@ nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending
   totals.ima_radius = ima_radius_;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   std::size_t passed = 0;
-  for (const metrics::TraineeMetric& m : metrics::trainee_metrics(rows_, s.events, side_, totals)) {
+  for (const metrics::TraineeMetric& m :
+       metrics::trainee_metrics(rows_, s.events, side_, totals, {}, thresholds_)) {
     list.push_back({{"name", m.name},
                     {"value", m.value},
                     {"unit", m.unit},

@@ -6,6 +6,7 @@
 // file, and what `imasim sai` needs to score the recording again: the IMA's centerline
 // (FILE.centerline.csv) and the heart at its static phase (FILE.heart.obj), from which the run
 // scores each instrument's tips by eq. 20 itself.
+#include <map>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -24,7 +25,8 @@ class RunRecording {
   // metrics::OutputError (also when one would overwrite one of `inputs`).
   RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
                const haptics::ForceModelParams& forces, const nlohmann::ordered_json& run,
-               const session::SurgicalSession& session, Real ima_radius);
+               const session::SurgicalSession& session, Real ima_radius,
+               const std::map<std::string, double>& thresholds = {});
 
   // A row when one is due at the session's time (call at the start and after each step).
   void sample(const session::SurgicalSession& session);
@@ -50,6 +52,7 @@ class RunRecording {
   metrics::SideReference side_;
   std::vector<metrics::TrajectorySample> rows_;  // every recorded row, for the scores
   Real ima_radius_ = 0;
+  std::map<std::string, double> thresholds_;
   haptics::ForceModelParams forces_;
   std::string side_path_;
   std::vector<std::string> inputs_;

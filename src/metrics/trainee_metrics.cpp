@@ -72,6 +72,13 @@ int count_events(const surgery::EventLog& log, EventKind kind, Tissue tissue) {
 
 }  // namespace
 
+std::vector<std::string> trainee_metric_names() {
+  std::vector<std::string> names;
+  for (const TraineeMetric& m : trainee_metrics({}, {}, SideReference{}, {}))
+    names.push_back(m.name);
+  return names;
+}
+
 std::vector<TraineeMetric> trainee_metrics(std::span<const TrajectorySample> rows,
                                            const surgery::EventLog& events,
                                            const SideReference& ima, const SessionTotals& session,

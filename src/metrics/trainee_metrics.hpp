@@ -43,6 +43,9 @@ class MetricsError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// The metrics' names, in the order trainee_metrics gives them.
+std::vector<std::string> trainee_metric_names();
+
 // Every metric in a fixed order. `overrides` replaces thresholds by metric name (MetricsError
 // for a name that is not a metric or a value that is not finite).
 std::vector<TraineeMetric> trainee_metrics(std::span<const TrajectorySample> rows,

@@ -14,6 +14,7 @@
 #include <map>
 #include <sstream>
 
+#include "math/edit_distance.hpp"
 #include "math/printable.hpp"
 #include "math/text_file.hpp"
 #include "scene/heart_series.hpp"
@@ -31,22 +32,6 @@ SceneFileError::SceneFileError(std::vector<std::string> messages)
         return all;
       }()),
       messages_(std::move(messages)) {}
-
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j)
-    row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
 
 namespace {
 

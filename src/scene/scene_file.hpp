@@ -29,7 +29,4 @@ ThoraxSceneParams load_scene_file(const std::string& path);
 // The scene as TOML: every key with its value and a comment (meaning, unit, source).
 std::string print_scene(const ThoraxSceneParams& params);
 
-// Levenshtein distance, for "did you mean" suggestions.
-std::size_t edit_distance(const std::string& a, const std::string& b);
-
 }  // namespace imasim::scene
