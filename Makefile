@@ -20,7 +20,7 @@ build: configure
 demo: build
 	$(BUILD)/apps/imasim/imasim cloth --n 64
 	$(BUILD)/apps/imasim/imasim run --headless --script examples/open_fascia.script \
-	  --events $(BUILD)/open_fascia_events.csv
+	  --record $(BUILD)/open_fascia.csv
 
 format-check: deps
 	bash scripts/check-format.sh
