@@ -124,12 +124,15 @@ std::vector<TraineeMetric> trainee_metrics(std::span<const TrajectorySample> row
       {"grasps", "1", "times the forceps closed on tissue",
        double(count_events(events, EventKind::grasp, Tissue::none)), 0, true},
   };
-  for (const auto& [name, value] : overrides) {
-    auto it =
-        std::find_if(m.begin(), m.end(), [&](const TraineeMetric& x) { return x.name == name; });
+  for (const auto& entry : overrides) {
+    // (No structured binding: clang 14 cannot capture one in a lambda.)
+    const std::string& name = entry.first;
+    auto it = std::find_if(m.begin(), m.end(),
+                           [&name](const TraineeMetric& x) { return x.name == name; });
     if (it == m.end()) throw MetricsError("no metric is called '" + name + "'");
-    if (!std::isfinite(value)) throw MetricsError("the threshold of '" + name + "' is not finite");
-    it->threshold = value;
+    if (!std::isfinite(entry.second))
+      throw MetricsError("the threshold of '" + name + "' is not finite");
+    it->threshold = entry.second;
   }
   for (TraineeMetric& x : m)
     x.pass = x.higher_is_better ? x.value >= x.threshold : x.value <= x.threshold;
