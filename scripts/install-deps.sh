@@ -11,6 +11,8 @@ packages=(
   libopenigtlink-dev  # OpenIGTLink messages for devices (issue 13)
   libsdl2-dev libspnav-dev  # gamepads and joysticks, 3D mice (issue 13)
   libboost-math-dev  # the t distribution for the study statistics (issue 14)
+  libcairo2-dev libsqlite3-dev  # heat maps and plots as PNG, trainee records (issue 14)
+  chromium fonts-dejavu-core  # tests only: the study report loaded as a browser does (issue 14)
 )
 
 missing=()
