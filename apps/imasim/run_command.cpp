@@ -139,6 +139,7 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   cmd->add_flag("--pedal", opt->pedal,
                 "With live --devices: foot pedals from a joystick's buttons (a USB foot "
                 "switch), mapped by the scene's devices.pedal_* keys");
+  add_autopilot_options(*cmd, opt->autopilot);
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
   cmd->add_flag("--progress", opt->progress,
                 "Report the simulated time on stderr every few seconds (always on a terminal)");
@@ -185,8 +186,16 @@ int run_run_command(const RunOptions& o) {
       return 2;
     }
   }
-  const std::string devices = !o.devices.empty() ? o.devices : script ? "script" : "";
-  const bool live = !devices.empty() && devices != "script";
+  if (o.autopilot.enabled && (script || !o.devices.empty() || !o.replay_file.empty())) {
+    std::cerr << "imasim run: --autopilot drives the instruments itself; it takes no --script, "
+                 "--devices or --replay\n";
+    return 2;
+  }
+  const std::string devices = !o.devices.empty() ? o.devices
+                              : script             ? "script"
+                              : o.autopilot.enabled ? "autopilot"
+                                                    : "";
+  const bool live = !devices.empty() && devices != "script" && devices != "autopilot";
   if (!o.replay_file.empty() && (script || !o.devices.empty())) {
     std::cerr << "imasim run: --replay plays a recorded stream; it takes no --script or "
                  "--devices\n";
@@ -215,7 +224,7 @@ int run_run_command(const RunOptions& o) {
       return 2;
     }
   }
-  const bool instruments = script || replay || live;
+  const bool instruments = script || replay || live || o.autopilot.enabled;
   if (o.repeat > 1 && !script) {
     std::cerr << "imasim run: --repeat needs --script (it repeats the script)\n";
     return 2;
@@ -290,6 +299,17 @@ int run_run_command(const RunOptions& o) {
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
 
+  std::optional<RunAutopilot> autopilot;
+  if (o.autopilot.enabled) {
+    try {
+      autopilot.emplace(*surgical, o.autopilot.params);
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "imasim run: the scripted operator cannot plan in this scene: " << e.what()
+                << '\n';
+      return 2;
+    }
+  }
+
   std::optional<RunRecording> recording;
   if (!o.record_file.empty()) {
     try {
@@ -311,6 +331,7 @@ int run_run_command(const RunOptions& o) {
   double seconds = o.seconds;
   const bool seconds_given = o.seconds_option && o.seconds_option->count() > 0;
   if (script && !seconds_given) seconds = script->end_time() + 0.5;
+  if (autopilot && !seconds_given) seconds = autopilot->end_time() + 0.5;
   if (replay) {
     const double recorded = double(replay->size()) * double(w.model.solver.dt);
     seconds = seconds_given ? std::min(seconds, recorded) : recorded;
@@ -374,6 +395,8 @@ int run_run_command(const RunOptions& o) {
       input = (*replay)[done];
     else if (script)
       input = session::sample_script(*script, w.state.time);
+    else if (autopilot)
+      input = autopilot->next(*surgical);
     if (record_out) {
       try {
         record_out->write(console::format_input_line(done, input) + '\n');
@@ -481,6 +504,7 @@ int run_run_command(const RunOptions& o) {
     if (replay) out["replay"] = o.replay_file;
     if (record_out) out["input_recorded"] = o.record_input_file;
     if (live_inputs) out["devices"] = device_report;
+    if (autopilot) out["operator"] = autopilot->report(*surgical);
     add_session_report(out, *surgical);
     if (events_out) out["events_written"] = events_out->written();
   }

@@ -1,0 +1,255 @@
+#include "autopilot/harvest_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "autopilot/working_frame.hpp"
+
+namespace imasim::autopilot {
+
+namespace {
+
+using haptics::CauteryMode;
+
+// Nominal speeds at OperatorParams::speed = 1: the hook cuts at 10 mm/s (as the example script
+// does; electrosurgical dissection is slow) and travels at 20 mm/s with the pedal up.
+constexpr Real kCutSpeed = Real(0.010);     // (unit: m/s)
+constexpr Real kTravelSpeed = Real(0.020);  // (unit: m/s)
+constexpr double kMinMove = 0.2;            // the shortest move (unit: s)
+// Two incisions open the fascia, this far either side of the vessel's centre: wide enough for
+// the hook's wrist to pass beside the vessel while it divides.
+constexpr Real kIncisionOffset = Real(0.007);  // (unit: m)
+// The electrode's tip passes this far beyond the fascia towards the wall while it opens it.
+constexpr Real kIncisionReach = Real(0.0025);  // (unit: m)
+// Dividing sweeps: the tip this far beside the vessel's centre and this high over it (towards
+// the wall) for a still heart: the fat strands that hold the vessel to the wall fan out from its
+// upper half, and there the tip's 4 mm cutting square (eq. 12) crosses all of them while the
+// electrode stays 2.4 mm from the vessel's wall.
+constexpr Real kSweepOffset = Real(0.003);    // (unit: m)
+constexpr Real kSweepHeight = Real(0.0025);   // (unit: m)
+constexpr Real kWallClearance = Real(0.001);  // the tip keeps this from the wall (unit: m)
+constexpr Real kSectionLength = Real(0.020);  // the segment is divided section by section (m)
+constexpr Real kLipOffset = Real(0.003);      // the forceps hold the lip this far out (unit: m)
+constexpr Real kRetractAway = Real(0.005);    // the held lip is drawn this far out ...
+constexpr Real kRetractDown = Real(0.003);    // ... and this far into the cavity (unit: m)
+constexpr Real kBelowFascia = Real(0.003);    // tools wait this far under the fascia (unit: m)
+// The hook's wrist raises the electrode towards the wall at this share, the rest leaning across
+// the vessel from outside, so that the tip is the electrode's point nearest the vessel.
+constexpr Real kHookRise = Real(0.9);
+// Moves that keep the heart at bay go up (out of the cavity) in steps of this (unit: m).
+constexpr Real kClearanceStep = Real(0.00025);
+
+// A rotation whose f axis (col 2) is `f` and whose n axis (col 1) is `n` made perpendicular to
+// it; l = n x f (col 0).
+Mat3 tool_rotation(const Vec3& f_in, const Vec3& n_in) {
+  const Vec3 f = f_in.normalized();
+  Vec3 n = n_in - n_in.dot(f) * f;
+  if (n.squaredNorm() < Real(1e-12)) n = f.unitOrthogonal();
+  n.normalize();
+  Mat3 r;
+  r.col(0) = n.cross(f);
+  r.col(1) = n;
+  r.col(2) = f;
+  return r;
+}
+
+class Planner {
+ public:
+  Planner(const WorkingFrame& frame, const OperatorParams& p, Real electrode)
+      : w_(frame), p_(p), electrode_(electrode) {
+    keep_out_ = p.keep_out_base + p.keep_out_gain * frame.heart_excursion;
+    // The further it keeps from the heart, the higher it works: up to the wall's clearance.
+    sweep_height_ =
+        std::min(kSweepHeight + (keep_out_ - p.keep_out_base), frame.wall_height - kWallClearance);
+    forceps_ = {0, frame.forceps_start, 0};
+    hook_ = {0, frame.hook_start, 0};
+    plan_.forceps.push_back(forceps_);
+    plan_.hook.push_back(hook_);
+    plan_.pedal.push_back({0, CauteryMode::off});
+    plan_.segment = frame.segment;
+    plan_.heart_excursion = frame.heart_excursion;
+    plan_.keep_out = keep_out_;
+  }
+
+  HarvestPlan finish() {
+    plan_.end_time = std::max(plan_.forceps.back().time, plan_.hook.back().time);
+    return std::move(plan_);
+  }
+
+  void phase(const std::string& name) { plan_.phases.push_back({now(), name}); }
+
+  // The point at arc length s, `across` beside the vessel away from the heart (< 0: towards
+  // it, shifted by the side bias) and `up` towards the wall.
+  Vec3 at(Real s, Real across, Real up) const {
+    return w_.point_at(s) + (across + p_.side_bias) * w_.away + up * w_.wall_normal;
+  }
+  Real length() const { return w_.length(); }
+  Real fascia_depth() const { return w_.fascia_depth; }
+  Real sweep_height() const { return sweep_height_; }
+
+  // The hook with its electrode's tip at `tip`, on the side `side` (+1 away from the heart, -1
+  // towards it), cutting along `direction`: the electrode rises towards the wall and leans in
+  // from outside; the cut plane's normal is the motion.
+  Pose hook_pose(const Vec3& tip, Real side, const Vec3& direction) const {
+    const Vec3 f =
+        kHookRise * w_.wall_normal - std::sqrt(1 - kHookRise * kHookRise) * side * w_.away;
+    Pose pose;
+    pose.rotation = tool_rotation(f, direction);
+    pose.translation = tip - electrode_ * pose.rotation.col(2);
+    return clear_of_heart(pose, electrode_);
+  }
+
+  // The forceps lying in the fascia's plane along the vessel (jaws opening across the fascia),
+  // their jaws' middle at `grip`.
+  Pose forceps_pose(const Vec3& grip) const {
+    constexpr Real kGripDepth = Real(0.006);  // hinge to the middle of what is held (unit: m)
+    Pose pose;
+    pose.rotation = tool_rotation(w_.tangent_at(length() / 2), w_.wall_normal);
+    pose.translation = grip - kGripDepth * pose.rotation.col(2);
+    return clear_of_heart(pose, 2 * kGripDepth);
+  }
+
+  // Raises a tool (out of the cavity, along the wall's normal) until its hinge and the point
+  // `reach` along f keep `keep_out` from the heart's static surface, the operator's margin for
+  // the heart (its motion is in keep_out), but never so high that the point passes within the
+  // wall clearance of the wall.
+  Pose clear_of_heart(Pose pose, Real reach) const {
+    const auto clear = [&](const Pose& q) {
+      return w_.heart_distance(q.translation) >= keep_out_ &&
+             w_.heart_distance(q.translation + reach * q.rotation.col(2)) >= keep_out_;
+    };
+    const Vec3 centre = w_.point_at(length() / 2);
+    const auto height = [&](const Pose& q) {
+      return (q.translation + reach * q.rotation.col(2) - centre).dot(w_.wall_normal);
+    };
+    while (!clear(pose) && height(pose) + kClearanceStep <= w_.wall_height - kWallClearance)
+      pose.translation += kClearanceStep * w_.wall_normal;
+    return pose;
+  }
+
+  void move_hook(const Pose& to, Real speed, double at_least = kMinMove) {
+    hook_ = {hook_.time + duration(hook_.tool, to, speed, at_least), to, 0};
+    plan_.hook.push_back(hook_);
+  }
+  void move_forceps(const Pose& to, Real jaw, Real speed, double at_least = kMinMove) {
+    forceps_ = {forceps_.time + duration(forceps_.tool, to, speed, at_least), to, jaw};
+    plan_.forceps.push_back(forceps_);
+  }
+  void hold_forceps(Real jaw, double seconds) {
+    forceps_.time += seconds / double(p_.speed);
+    forceps_.jaw = jaw;
+    plan_.forceps.push_back(forceps_);
+  }
+  void pedal(CauteryMode mode) { plan_.pedal.push_back({hook_.time, mode}); }
+  // Both hands continue from the later of their clocks.
+  void sync() {
+    const double t = now();
+    if (hook_.time < t) {
+      hook_.time = t;
+      plan_.hook.push_back(hook_);
+    }
+    if (forceps_.time < t) {
+      forceps_.time = t;
+      plan_.forceps.push_back(forceps_);
+    }
+  }
+  double now() const { return std::max(hook_.time, forceps_.time); }
+
+  // The hook cuts from arc length a to b, `across` and `up` from the vessel's centre.
+  void hook_sweep(Real a, Real b, Real across, Real up, Real entry_up) {
+    const Vec3 direction = (at(b, across, up) - at(a, across, up)).normalized();
+    const Real side = across < 0 ? Real(-1) : Real(1);
+    move_hook(hook_pose(at(a, across, entry_up), side, direction), kTravelSpeed);
+    move_hook(hook_pose(at(a, across, up), side, direction), kTravelSpeed);
+    pedal(CauteryMode::cut);
+    const int pieces = std::max(1, int(std::ceil((b - a) / Real(0.005))));  // follow the vessel
+    for (int i = 1; i <= pieces; ++i) {
+      const Real s = a + (b - a) * Real(i) / Real(pieces);
+      move_hook(hook_pose(at(s, across, up), side, direction), kCutSpeed);
+    }
+    pedal(CauteryMode::off);
+    move_hook(hook_pose(at(b, across, entry_up), side, direction), kTravelSpeed);
+  }
+
+ private:
+  double duration(const Pose& from, const Pose& to, Real speed, double at_least) const {
+    const double d = double((to.translation - from.translation).norm());
+    return std::max(d / double(speed), at_least) / double(p_.speed);
+  }
+
+  const WorkingFrame& w_;
+  const OperatorParams& p_;
+  Real electrode_;
+  Real keep_out_ = 0, sweep_height_ = 0;
+  ToolKey forceps_, hook_;
+  HarvestPlan plan_;
+};
+
+void check(const OperatorParams& p) {
+  const auto finite_in = [](Real v, Real lo, Real hi) {
+    return std::isfinite(v) && v >= lo && v <= hi;
+  };
+  if (!finite_in(p.speed, Real(0.1), Real(10)))
+    throw std::invalid_argument("operator speed must be within [0.1, 10]");
+  if (!finite_in(p.side_bias, Real(-0.005), Real(0.005)))
+    throw std::invalid_argument("operator side bias must be within [-0.005, 0.005] m");
+  if (!finite_in(p.tremor, 0, Real(0.002)))
+    throw std::invalid_argument("operator tremor must be within [0, 0.002] m");
+  if (!finite_in(p.keep_out_base, 0, Real(0.02)) || !finite_in(p.keep_out_gain, 0, Real(10)))
+    throw std::invalid_argument("keep-out base within [0, 0.02] m and gain within [0, 10]");
+}
+
+}  // namespace
+
+HarvestPlan plan_harvest(const session::SurgicalSession& session, const OperatorParams& params) {
+  check(params);
+  const WorkingFrame frame = make_working_frame(session, params.segment_length);
+  Planner p(frame, params, session.params.cautery.electrode_length);
+  const Real below = -(p.fascia_depth() + kBelowFascia);
+  const Real incision_up = -(p.fascia_depth() - kIncisionReach);
+
+  // 1. Open the fascia beside the vessel, proximal to distal: on the side away from the heart,
+  // then on the heart's side.
+  p.phase("open");
+  p.hook_sweep(0, p.length(), kIncisionOffset, incision_up, below);
+  p.hook_sweep(0, p.length(), -kIncisionOffset, incision_up, below);
+
+  // 2. Section by section: hold the outer lip of the incision away from the heart aside and
+  // divide the fat that holds the vessel to the wall, on the side away from the heart, then on
+  // the heart's side. With its strands divided the pedicle is free.
+  p.sync();
+  p.phase("divide");
+  const int sections = std::max(1, int(std::lround(p.length() / kSectionLength)));
+  const Real lip = kIncisionOffset + kLipOffset;
+  const Real fascia = -p.fascia_depth();
+  for (int k = 0; k < sections; ++k) {
+    const Real a = p.length() * Real(k) / Real(sections);
+    const Real b = p.length() * Real(k + 1) / Real(sections);
+    const Real grip_s = (a + b) / 2;
+    p.move_forceps(p.forceps_pose(p.at(grip_s, lip, fascia - kBelowFascia)), 0, kTravelSpeed);
+    p.move_forceps(p.forceps_pose(p.at(grip_s, lip, fascia)), 0, kTravelSpeed);
+    p.hold_forceps(1, 0.4);  // close on the lip
+    p.move_forceps(p.forceps_pose(p.at(grip_s, lip + kRetractAway, fascia - kRetractDown)), 1,
+                   kTravelSpeed);
+    p.sync();
+    p.hook_sweep(a, b, kSweepOffset, p.sweep_height(), below);
+    p.hook_sweep(a, b, -kSweepOffset, p.sweep_height(), below);
+    p.sync();
+    p.hold_forceps(0, 0.4);  // release
+    p.move_forceps(p.forceps_pose(p.at(grip_s, lip + kRetractAway, fascia - kBelowFascia)), 0,
+                   kTravelSpeed);
+  }
+
+  // 3. Withdraw both tools under the fascia, clear of the freed pedicle.
+  p.sync();
+  p.phase("withdraw");
+  p.move_hook(p.hook_pose(p.at(p.length(), 2 * kIncisionOffset, below), 1,
+                          Vec3(p.at(p.length(), 0, 0) - p.at(0, 0, 0)).normalized()),
+              kTravelSpeed);
+  p.sync();
+  p.phase("done");
+  return p.finish();
+}
+
+}  // namespace imasim::autopilot

@@ -1,0 +1,71 @@
+#include "autopilot/scripted_operator.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+namespace imasim::autopilot {
+
+ToolKey sample_tool_track(const std::vector<ToolKey>& track, double t) {
+  if (track.empty()) return {};
+  const auto after = std::upper_bound(track.begin(), track.end(), t,
+                                      [](double time, const ToolKey& k) { return time < k.time; });
+  if (after == track.begin()) return track.front();
+  if (after == track.end()) return track.back();
+  const ToolKey& a = *(after - 1);
+  const ToolKey& b = *after;
+  const double span = b.time - a.time;
+  const Real s = span > 0 ? Real((t - a.time) / span) : Real(1);
+  ToolKey out;
+  out.time = t;
+  out.tool.translation = (1 - s) * a.tool.translation + s * b.tool.translation;
+  const Eigen::Quaternion<Real> qa(a.tool.rotation), qb(b.tool.rotation);
+  out.tool.rotation = qa.slerp(s, qb).toRotationMatrix();
+  out.jaw = (1 - s) * a.jaw + s * b.jaw;
+  return out;
+}
+
+ScriptedOperator::ScriptedOperator(HarvestPlan plan, const OperatorParams& params)
+    : plan_(std::move(plan)),
+      left_tremor_(params.seed * 2 + 1, params.tremor),
+      right_tremor_(params.seed * 2 + 2, params.tremor) {}
+
+void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
+  const auto drive = [now_s](const std::vector<ToolKey>& track, const Tremor& tremor,
+                             devices::HandInput& hand) {
+    const ToolKey k = sample_tool_track(track, now_s);
+    hand.pose = k.tool;
+    hand.pose.translation += tremor.at(now_s);
+    hand.frame = devices::PoseFrame::tool;
+    hand.time_s = now_s;
+    hand.has_pose = true;
+    hand.has_buttons = true;
+    hand.clutch = false;
+    hand.jaw = k.jaw;
+  };
+  drive(plan_.forceps, left_tremor_, input.left);
+  drive(plan_.hook, right_tremor_, input.right);
+  const auto after = std::upper_bound(plan_.pedal.begin(), plan_.pedal.end(), now_s,
+                                      [](double time, const PedalKey& k) { return time < k.time; });
+  input.pedal = after == plan_.pedal.begin() ? haptics::CauteryMode::off : (after - 1)->mode;
+  input.power_w = power_w_;
+}
+
+devices::DeviceInfo ScriptedOperator::info() const {
+  devices::DeviceInfo i;
+  i.kind = "autopilot";
+  i.name = "scripted operator (a test operator, not a model of surgeons)";
+  i.mapping = "forceps: tool pose and jaws; hook: tool pose; pedal: cut and coagulation";
+  i.connected = true;
+  i.drives_left = i.drives_right = i.drives_pedal = true;
+  return i;
+}
+
+const std::string& ScriptedOperator::phase_at(double now_s) const {
+  static const std::string none;
+  const auto after =
+      std::upper_bound(plan_.phases.begin(), plan_.phases.end(), now_s,
+                       [](double time, const PhaseMark& m) { return time < m.time; });
+  return after == plan_.phases.begin() ? none : (after - 1)->name;
+}
+
+}  // namespace imasim::autopilot

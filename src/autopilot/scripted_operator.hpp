@@ -1,0 +1,38 @@
+#pragma once
+// The scripted operator as a device (issue 14): it plays a harvest plan through the same
+// interface as a surgeon's hands (devices/input_device.hpp): a tool pose per hand (the hinge, as
+// a tracker on the instrument reports it), the jaws and the cautery pedal. It never reads or
+// writes tissue state. Poses interpolate between the plan's keys (position linearly, rotation by
+// slerp) and carry the operator's tremor; everything is a function of time, the plan and the
+// seed, so a trial is bit-for-bit repeatable.
+#include "autopilot/harvest_plan.hpp"
+#include "autopilot/tremor.hpp"
+#include "devices/input_device.hpp"
+
+namespace imasim::autopilot {
+
+class ScriptedOperator final : public devices::InputDevice {
+ public:
+  ScriptedOperator(HarvestPlan plan, const OperatorParams& params);
+
+  void poll(double now_s, devices::ConsoleInput& input) override;
+  // No force feedback: the operator follows its plan whatever it feels.
+  void send_force(devices::Hand, const Vec3&, double) override {}
+  bool connected() const override { return true; }
+  devices::DeviceInfo info() const override;
+
+  const HarvestPlan& plan() const { return plan_; }
+  bool finished(double now_s) const { return now_s >= plan_.end_time; }
+  // The phase under way at a time ("" before the first).
+  const std::string& phase_at(double now_s) const;
+
+ private:
+  HarvestPlan plan_;
+  Tremor left_tremor_, right_tremor_;
+  Real power_w_ = 40;
+};
+
+// A key track sampled at t: poses and the jaw interpolated, held outside the keys.
+ToolKey sample_tool_track(const std::vector<ToolKey>& track, double t);
+
+}  // namespace imasim::autopilot
