@@ -65,5 +65,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     imasim::fuzz::require(std::isfinite(seconds) && seconds >= 0.1 && seconds <= 3600,
                           "haptics-bench --seconds accepted out of range");
   }
+  if (app.got_subcommand("heatmap")) {
+    const imasim::cli::HeatmapOptions& h = *commands.heatmap;
+    imasim::fuzz::require(std::isfinite(h.bandwidth) && h.bandwidth >= 1e-5 && h.bandwidth <= 0.05,
+                          "heatmap --bandwidth accepted out of range");
+    imasim::fuzz::require(std::isfinite(h.density_max) && h.density_max >= 0,
+                          "heatmap --density-max accepted out of range");
+    imasim::fuzz::require(h.width >= 480 && h.width <= 8000 && h.height >= 360 && h.height <= 8000,
+                          "heatmap --width or --height accepted out of range");
+  }
   return 0;
 }

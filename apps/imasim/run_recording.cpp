@@ -1,6 +1,8 @@
 #include "run_recording.hpp"
 
+#include "console/heat_map_frame_of.hpp"
 #include "console/trajectory_sample.hpp"
+#include "metrics/heat_map.hpp"
 #include "metrics/trainee_metrics.hpp"
 
 #include <cstdio>
@@ -32,6 +34,14 @@ std::string RunRecording::centerline_path_of(const std::string& csv) {
 
 std::string RunRecording::heart_path_of(const std::string& csv) {
   return stem_of(csv) + ".heart.obj";
+}
+
+std::string RunRecording::frame_path_of(const std::string& csv) {
+  return stem_of(csv) + ".frame.json";
+}
+
+std::string RunRecording::heat_map_path_of(const std::string& csv, std::string_view tool) {
+  return stem_of(csv) + ".heatmap-" + std::string(tool) + ".png";
 }
 
 namespace {
@@ -86,6 +96,8 @@ RunRecording::RunRecording(const std::string& csv_path, std::span<const std::str
                            Real ima_radius, const std::map<std::string, double>& thresholds)
     : trajectory_(metrics::OutputFile(csv_path, "the trajectory file", inputs)),
       side_(metrics::make_side_reference(s.scene.layout.ima_centerline, static_heart(s))),
+      frame_(console::heat_map_frame_of(s)),
+      csv_path_(csv_path),
       ima_radius_(ima_radius),
       thresholds_(thresholds),
       forces_(forces),
@@ -95,9 +107,39 @@ RunRecording::RunRecording(const std::string& csv_path, std::span<const std::str
   inputs_.push_back(csv_path);
   run_["centerline_file"] = centerline_path_of(csv_path);
   run_["heart_file"] = heart_path_of(csv_path);
+  run_["heat_maps"] = {{"frame", frame_path_of(csv_path)}};
   write_side(run_);
   write_centerline(centerline_path_of(csv_path), inputs_, side_.centerline);
   write_obj(heart_path_of(csv_path), inputs_, static_heart(s));
+  metrics::write_heat_map_frame(frame_, frame_path_of(csv_path), inputs_);
+}
+
+nlohmann::ordered_json RunRecording::draw_heat_maps(const nlohmann::ordered_json& sai) {
+  nlohmann::ordered_json files;
+  files["frame"] = frame_path_of(csv_path_);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string tool(metrics::kToolNames[k]);
+    std::vector<Vec3> tips;
+    tips.reserve(rows_.size());
+    for (const metrics::TrajectorySample& r : rows_)
+      tips.push_back(r.tools[k].tip);
+    metrics::HeatMapStyle style;
+    style.title = "Tool-tip density: " + tool;
+    char subtitle[160];
+    std::snprintf(subtitle, sizeof subtitle, "SAI = %.3f (R = %g mm), %s heart, %.1f s recorded",
+                  sai[tool]["sai"].get<double>(), 1000 * double(metrics::kSaiRadius),
+                  run_.value("heart", std::string("unknown")).c_str(),
+                  rows_.empty() ? 0.0 : rows_.back().time - rows_.front().time);
+    style.subtitle = subtitle;
+    const std::string path = heat_map_path_of(csv_path_, tool);
+    try {
+      metrics::write_heat_map_png(frame_, tips, style, path, inputs_);
+    } catch (const std::invalid_argument& e) {
+      throw metrics::OutputError("cannot draw " + path + ": " + e.what());
+    }
+    files[tool] = path;
+  }
+  return files;
 }
 
 void RunRecording::write_side(const nlohmann::ordered_json& run) {
@@ -156,6 +198,7 @@ nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending
     run[it.key()] = it.value();
   run["rows"] = trajectory_.rows();
   run["scores"] = scores;
+  run["heat_maps"] = draw_heat_maps(sai);
   write_side(run);
   return scores;
 }

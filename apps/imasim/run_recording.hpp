@@ -5,7 +5,9 @@
 // how the run ended and its scores), the events in FILE.events.csv unless --events names another
 // file, and what `imasim sai` needs to score the recording again: the IMA's centerline
 // (FILE.centerline.csv) and the heart at its static phase (FILE.heart.obj), from which the run
-// scores each instrument's tips by eq. 20 itself.
+// scores each instrument's tips by eq. 20 itself. Heat maps as in Fig. 13: the frame they project
+// onto (FILE.frame.json, at the start) and, at the end, each instrument's tips drawn on it
+// (FILE.heatmap-forceps.png, FILE.heatmap-hook.png), named in the side file under "heat_maps".
 #include <map>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "haptics/force_params.hpp"
+#include "metrics/heat_map_frame.hpp"
 #include "metrics/spatial_asymmetry.hpp"
 #include "metrics/trajectory_recorder.hpp"
 #include "session/surgical_session.hpp"
@@ -21,7 +24,8 @@ namespace imasim::cli {
 
 class RunRecording {
  public:
-  // Opens FILE.csv and writes FILE.json, FILE.centerline.csv and FILE.heart.obj; throws
+  // Opens FILE.csv and writes FILE.json, FILE.centerline.csv, FILE.heart.obj and
+  // FILE.frame.json; throws
   // metrics::OutputError (also when one would overwrite one of `inputs`).
   RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
                const haptics::ForceModelParams& forces, const nlohmann::ordered_json& run,
@@ -32,7 +36,8 @@ class RunRecording {
   void sample(const session::SurgicalSession& session);
   // Closes the CSV and rewrites the side file with `ending` (status, steps, rows) and the
   // scores; returns them: the SAI of each instrument's tips (eq. 20, R = 2 mm) and the trainee
-  // metrics with their thresholds and pass or fail (metrics/trainee_metrics.hpp).
+  // metrics with their thresholds and pass or fail (metrics/trainee_metrics.hpp). Draws the two
+  // heat maps (subtitled with their SAI) before it rewrites the side file.
   nlohmann::ordered_json finish(const nlohmann::ordered_json& ending,
                                 const session::SurgicalSession& session);
 
@@ -44,12 +49,18 @@ class RunRecording {
   static std::string events_path_of(const std::string& csv_path);
   static std::string centerline_path_of(const std::string& csv_path);
   static std::string heart_path_of(const std::string& csv_path);
+  static std::string frame_path_of(const std::string& csv_path);
+  // FILE.heatmap-TOOL.png
+  static std::string heat_map_path_of(const std::string& csv_path, std::string_view tool);
 
  private:
   void write_side(const nlohmann::ordered_json& run);
+  nlohmann::ordered_json draw_heat_maps(const nlohmann::ordered_json& sai);
 
   metrics::TrajectoryRecorder trajectory_;
   metrics::SideReference side_;
+  metrics::HeatMapFrame frame_;
+  std::string csv_path_;
   std::vector<metrics::TrajectorySample> rows_;  // every recorded row, for the scores
   Real ima_radius_ = 0;
   std::map<std::string, double> thresholds_;
