@@ -13,6 +13,7 @@ Commands add_commands(CLI::App& app) {
   c.devices = add_devices_command(app);
   c.stats = add_stats_command(app);
   c.sai = add_sai_command(app);
+  c.history = add_history_command(app);
   return c;
 }
 
@@ -25,6 +26,7 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("devices")) return run_devices_command(*c.devices);
   if (app.got_subcommand("stats")) return run_stats_command(*c.stats);
   if (app.got_subcommand("sai")) return run_sai_command(*c.sai);
+  if (app.got_subcommand("history")) return run_history_command(*c.history);
   return 0;
 }
 

@@ -8,6 +8,7 @@
 #include "device_emulator_command.hpp"
 #include "devices_command.hpp"
 #include "haptics_bench_command.hpp"
+#include "history_command.hpp"
 #include "run_command.hpp"
 #include "sai_command.hpp"
 #include "scene_command.hpp"
@@ -24,6 +25,7 @@ struct Commands {
   std::shared_ptr<DevicesOptions> devices;
   std::shared_ptr<StatsOptions> stats;
   std::shared_ptr<SaiOptions> sai;
+  std::shared_ptr<HistoryOptions> history;
 };
 
 // Registers every subcommand on `app` (one is required).
