@@ -20,7 +20,7 @@ build: configure
 demo: build
 	$(BUILD)/apps/imasim/imasim cloth --n 64
 	$(BUILD)/apps/imasim/imasim run --headless --script examples/open_fascia.script \
-	  --record $(BUILD)/open_fascia.csv
+	  --record $(BUILD)/open_fascia.csv --db $(BUILD)/trainees.sqlite
 
 format-check: deps
 	bash scripts/check-format.sh

@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "fuzz_check.hpp"
+#include "metrics/trainee_name.hpp"
 
 namespace {
 
@@ -38,6 +39,9 @@ void check_run_options(const imasim::cli::RunOptions& o) {
           "run --heart-rate accepted out of range");
   require(o.repeat >= 1, "run --repeat accepted below 1");
   require(o.threads >= 0 && o.threads <= 1024, "run --threads accepted out of range");
+  require(o.trainee.empty() || imasim::metrics::trainee_name_problem(o.trainee).empty(),
+          "run --trainee accepted a name the records refuse");
+  require(!(o.no_db && !o.db_file.empty()), "run --no-db accepted with --db");
 }
 
 }  // namespace
@@ -60,6 +64,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (app.got_subcommand("run")) check_run_options(*commands.run);
+  if (app.got_subcommand("history")) {
+    const std::string& trainee = commands.history->trainee;
+    imasim::fuzz::require(trainee.empty() || imasim::metrics::trainee_name_problem(trainee).empty(),
+                          "history --trainee accepted a name the records refuse");
+  }
   if (app.got_subcommand("haptics-bench")) {
     const double seconds = commands.haptics_bench->seconds;
     imasim::fuzz::require(std::isfinite(seconds) && seconds >= 0.1 && seconds <= 3600,

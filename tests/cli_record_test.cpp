@@ -22,8 +22,13 @@ const std::string kDir = ::testing::TempDir();
 const std::string kErr = kDir + "imasim_record_stderr.txt";
 const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
 
+// Recorded runs append to the trainee records of the user's data directory: here a temporary
+// one, never the real user's.
+const std::string kDataHome = kDir + "imasim_record_data_home";
+
 Finished run(const std::string& args, const std::string& prefix = "") {
-  return imasim::test::run_shell(prefix + " " + std::string(IMASIM_EXE) + " " + args + " 2>" + kErr,
+  return imasim::test::run_shell(prefix + " env XDG_DATA_HOME=" + kDataHome + " " +
+                                     std::string(IMASIM_EXE) + " " + args + " 2>" + kErr,
                                  kErr);
 }
 

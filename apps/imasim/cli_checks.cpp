@@ -4,6 +4,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "math/printable.hpp"
+#include "metrics/trainee_name.hpp"
+
 namespace imasim::cli {
 
 namespace {
@@ -51,6 +54,16 @@ CLI::Validator non_empty() {
         return text.empty() ? std::string("expected a file name, got an empty one") : "";
       },
       "NON-EMPTY");
+}
+
+CLI::Validator trainee_name() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const std::string problem = metrics::trainee_name_problem(text);
+        return problem.empty() ? std::string()
+                               : "the name '" + printable(text, 80) + "' " + problem;
+      },
+      "NAME");
 }
 
 }  // namespace imasim::cli

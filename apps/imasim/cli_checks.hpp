@@ -15,4 +15,7 @@ CLI::Validator unsigned_at_most(std::uint64_t max);
 // A non-empty value (a file name).
 CLI::Validator non_empty();
 
+// A trainee's name as the records keep it (metrics/trainee_name.hpp).
+CLI::Validator trainee_name();
+
 }  // namespace imasim::cli

@@ -14,6 +14,7 @@ Commands add_commands(CLI::App& app) {
   c.stats = add_stats_command(app);
   c.sai = add_sai_command(app);
   c.heatmap = add_heatmap_command(app);
+  c.history = add_history_command(app);
   return c;
 }
 
@@ -27,6 +28,7 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("stats")) return run_stats_command(*c.stats);
   if (app.got_subcommand("sai")) return run_sai_command(*c.sai);
   if (app.got_subcommand("heatmap")) return run_heatmap_command(*c.heatmap);
+  if (app.got_subcommand("history")) return run_history_command(*c.history);
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include "devices_command.hpp"
 #include "haptics_bench_command.hpp"
 #include "heatmap_command.hpp"
+#include "history_command.hpp"
 #include "run_command.hpp"
 #include "sai_command.hpp"
 #include "scene_command.hpp"
@@ -26,6 +27,7 @@ struct Commands {
   std::shared_ptr<StatsOptions> stats;
   std::shared_ptr<SaiOptions> sai;
   std::shared_ptr<HeatmapOptions> heatmap;
+  std::shared_ptr<HistoryOptions> history;
 };
 
 // Registers every subcommand on `app` (one is required).

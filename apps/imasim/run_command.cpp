@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -20,6 +21,7 @@
 #include "report.hpp"
 #include "run_progress.hpp"
 #include "run_recording.hpp"
+#include "run_trainee_record.hpp"
 #include "scene/scene_file.hpp"
 #include "scene/solver_budget.hpp"
 #include "scene/thorax_scene.hpp"
@@ -94,6 +96,17 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
                   "With --record: proficiency thresholds, a JSON object of metric name to "
                   "threshold, replacing the defaults (docs/scoring.md)")
       ->check(non_empty());
+  cmd->add_option("--trainee", opt->trainee,
+                  "With --record: the trainee the session is recorded for (default: $USER, else "
+                  "anonymous; at most 64 characters of printable text)")
+      ->check(trainee_name());
+  CLI::Option* db =
+      cmd->add_option("--db", opt->db_file,
+                      "With --record: the trainee records (SQLite) to append the scored session "
+                      "to; default: $XDG_DATA_HOME/imasim/trainees.sqlite, else "
+                      "~/.local/share/imasim/trainees.sqlite")
+          ->check(non_empty());
+  cmd->add_flag("--no-db", opt->no_db, "With --record: append no trainee record")->excludes(db);
   cmd->add_flag("--static", opt->static_heart, "Freeze the heart at its static phase (70 %)");
   cmd->add_option("--heart-rate", opt->heart_rate_bpm,
                   "Heart rate (beats per minute); default: the scene's (75)")
@@ -243,6 +256,24 @@ int run_run_command(const RunOptions& o) {
       thresholds = metrics::load_threshold_file(o.thresholds_file);
     } catch (const metrics::ThresholdFileError& e) {
       std::cerr << e.what() << '\n';
+      return 2;
+    }
+  }
+  if (o.record_file.empty() && (!o.trainee.empty() || !o.db_file.empty() || o.no_db)) {
+    std::cerr << "imasim run: --trainee, --db and --no-db go with --record (they keep its "
+                 "scores)\n";
+    return 2;
+  }
+  std::optional<metrics::TraineeRecords> records;
+  std::string trainee;
+  const std::string started_utc = metrics::utc_timestamp();
+  if (!o.record_file.empty() && !o.no_db) {
+    try {
+      const RecordsChoice choice = choose_records(o.trainee, o.db_file);
+      trainee = choice.trainee;
+      records.emplace(choice.database, metrics::TraineeRecords::Access::append);
+    } catch (const metrics::RecordsError& e) {
+      std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
     }
   }
@@ -523,7 +554,21 @@ int run_run_command(const RunOptions& o) {
           {{"status", out["status"]}, {"steps", done}, {"simulated_s", w.state.time}}, *surgical);
       out["recorded"] = o.record_file;
       out["recorded_rows"] = recording->rows();
-    } catch (const metrics::OutputError& e) {
+      if (records) {
+        metrics::SessionRecord session;
+        session.trainee = trainee;
+        session.date_utc = started_utc;
+        session.scene = out["scene"].get<std::string>();
+        session.heart = params.playback.beating ? metrics::HeartMode::dynamic
+                                                : metrics::HeartMode::static_heart;
+        session.patient_seed = scene.patient.patient_seed;
+        session.operator_kind = operator_kind_of(devices, replay.has_value());
+        session.input = replay ? "replay" : devices;
+        session.status = out["status"].get<std::string>();
+        session.recording = std::filesystem::absolute(o.record_file).string();
+        out["trainee_record"] = append_trainee_record(*records, *recording, session);
+      }
+    } catch (const std::runtime_error& e) {  // OutputError, RecordsError
       if (!output_failure) output_failure = e.what();
       out["status"] = "output_failed";
       out["output_error"] = *output_failure;

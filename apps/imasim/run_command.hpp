@@ -34,6 +34,10 @@ struct RunOptions {
   std::string record_input_file;  // empty: not recorded; else every step's input written there
   std::string record_file;        // empty: no trajectory; else the 60 Hz recording (CSV + JSON)
   std::string thresholds_file;    // empty: the metrics' default thresholds
+  // With record_file: the trainee records (run_trainee_record.hpp).
+  std::string trainee;                      // empty: $USER, else "anonymous"
+  std::string db_file;                      // empty: the user's data directory
+  bool no_db = false;                       // no trainee record
   std::optional<std::string> igtl_address;  // unset: the scene file's (devices.igtl_address)
   std::optional<std::uint16_t> igtl_port;   // unset: the scene file's (devices.igtl_port)
   bool igtl_client = false;

@@ -4,6 +4,7 @@
 #include "console/trajectory_sample.hpp"
 #include "metrics/heat_map.hpp"
 #include "metrics/trainee_metrics.hpp"
+#include "score_report.hpp"
 
 #include <cstdio>
 
@@ -81,13 +82,6 @@ void write_obj(const std::string& path, std::span<const std::string> inputs,
   f.close();
 }
 
-nlohmann::ordered_json sai_report(const metrics::SaiResult& r) {
-  return {{"sai", r.sai},
-          {"samples", r.samples},
-          {"mean_distance_m", r.mean_distance},
-          {"heart_side_fraction", r.heart_side_fraction}};
-}
-
 }  // namespace
 
 RunRecording::RunRecording(const std::string& csv_path, std::span<const std::string> inputs,
@@ -163,12 +157,16 @@ nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending
   nlohmann::ordered_json scores;
   nlohmann::ordered_json sai;
   sai["radius_m"] = metrics::kSaiRadius;
+  scored_ = {};
+  scored_.sai_radius = double(metrics::kSaiRadius);
   for (std::size_t k = 0; k < 2; ++k) {
     std::vector<Vec3> tips;
     tips.reserve(rows_.size());
     for (const metrics::TrajectorySample& r : rows_)
       tips.push_back(r.tools[k].tip);
-    sai[std::string(metrics::kToolNames[k])] = sai_report(metrics::spatial_asymmetry(side_, tips));
+    const metrics::SaiResult result = metrics::spatial_asymmetry(side_, tips);
+    sai[std::string(metrics::kToolNames[k])] = sai_report(result);
+    scored_.sai.push_back({std::string(metrics::kToolNames[k]), result});
   }
   scores["sai"] = sai;
   metrics::SessionTotals totals;
@@ -181,14 +179,9 @@ nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending
   std::size_t passed = 0;
   for (const metrics::TraineeMetric& m :
        metrics::trainee_metrics(rows_, s.events, side_, totals, {}, thresholds_)) {
-    list.push_back({{"name", m.name},
-                    {"value", m.value},
-                    {"unit", m.unit},
-                    {"threshold", m.threshold},
-                    {"better", m.higher_is_better ? "higher" : "lower"},
-                    {"pass", m.pass},
-                    {"meaning", m.meaning}});
+    list.push_back(metric_report(m));
     passed += m.pass ? 1 : 0;
+    scored_.metrics.push_back(m);
   }
   scores["metrics"] = list;
   scores["metrics_passed"] = passed;
@@ -200,7 +193,17 @@ nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending
   run["scores"] = scores;
   run["heat_maps"] = draw_heat_maps(sai);
   write_side(run);
+  finished_run_ = run;
   return scores;
+}
+
+metrics::SessionRecord RunRecording::scored_session() const {
+  return scored_;
+}
+
+void RunRecording::add_to_side(const std::string& key, const nlohmann::ordered_json& value) {
+  finished_run_[key] = value;
+  write_side(finished_run_);
 }
 
 }  // namespace imasim::cli

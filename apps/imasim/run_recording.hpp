@@ -17,6 +17,7 @@
 #include "haptics/force_params.hpp"
 #include "metrics/heat_map_frame.hpp"
 #include "metrics/spatial_asymmetry.hpp"
+#include "metrics/trainee_records.hpp"
 #include "metrics/trajectory_recorder.hpp"
 #include "session/surgical_session.hpp"
 
@@ -40,6 +41,12 @@ class RunRecording {
   // heat maps (subtitled with their SAI) before it rewrites the side file.
   nlohmann::ordered_json finish(const nlohmann::ordered_json& ending,
                                 const session::SurgicalSession& session);
+
+  // After finish: the scores as the trainee records keep them (SAI per instrument, every
+  // metric); the caller fills in who, when and what was run.
+  metrics::SessionRecord scored_session() const;
+  // After finish: adds `key` to the side file's "run" object and writes the file again.
+  void add_to_side(const std::string& key, const nlohmann::ordered_json& value);
 
   std::size_t rows() const { return trajectory_.rows(); }
   const std::string& side_path() const { return side_path_; }
@@ -68,6 +75,8 @@ class RunRecording {
   std::string side_path_;
   std::vector<std::string> inputs_;
   nlohmann::ordered_json run_;
+  nlohmann::ordered_json finished_run_;  // run_ with the ending and the scores
+  metrics::SessionRecord scored_;
 };
 
 }  // namespace imasim::cli
