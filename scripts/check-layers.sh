@@ -14,6 +14,7 @@ declare -A allowed=(
   [scene]="scene tissue physics geometry math"
   [session]="session scene surgery tissue physics geometry math"
   [metrics]="metrics surgery tissue physics geometry math"
+  [report]="report metrics surgery tissue physics geometry math"
   [console]="console session scene surgery tissue physics geometry math devices haptics metrics"
 )
 bad=0

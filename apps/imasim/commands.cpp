@@ -13,6 +13,8 @@ Commands add_commands(CLI::App& app) {
   c.devices = add_devices_command(app);
   c.stats = add_stats_command(app);
   c.sai = add_sai_command(app);
+  c.experiment = add_experiment_command(app);
+  c.demo = add_demo_command(app);
   return c;
 }
 
@@ -25,6 +27,8 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("devices")) return run_devices_command(*c.devices);
   if (app.got_subcommand("stats")) return run_stats_command(*c.stats);
   if (app.got_subcommand("sai")) return run_sai_command(*c.sai);
+  if (app.got_subcommand("experiment")) return run_experiment_command(*c.experiment);
+  if (app.got_subcommand("demo")) return run_demo_command(*c.demo);
   return 0;
 }
 

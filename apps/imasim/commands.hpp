@@ -5,8 +5,10 @@
 #include <memory>
 
 #include "cloth_command.hpp"
+#include "demo_command.hpp"
 #include "device_emulator_command.hpp"
 #include "devices_command.hpp"
+#include "experiment_command.hpp"
 #include "haptics_bench_command.hpp"
 #include "run_command.hpp"
 #include "sai_command.hpp"
@@ -24,6 +26,8 @@ struct Commands {
   std::shared_ptr<DevicesOptions> devices;
   std::shared_ptr<StatsOptions> stats;
   std::shared_ptr<SaiOptions> sai;
+  std::shared_ptr<ExperimentOptions> experiment;
+  std::shared_ptr<DemoOptions> demo;
 };
 
 // Registers every subcommand on `app` (one is required).
