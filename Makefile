@@ -17,10 +17,10 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# The main job: the scripted operator harvests the IMA with the beating and the static heart (3
+# trials each, in parallel processes), then a summary and out/report.html (docs/scoring.md).
 demo: build
-	$(BUILD)/apps/imasim/imasim cloth --n 64
-	$(BUILD)/apps/imasim/imasim run --headless --script examples/open_fascia.script \
-	  --record $(BUILD)/open_fascia.csv --db $(BUILD)/trainees.sqlite
+	$(BUILD)/apps/imasim/imasim demo --out out --jobs $(JOBS) --db $(BUILD)/trainees.sqlite
 
 format-check: deps
 	bash scripts/check-format.sh

@@ -15,6 +15,7 @@ declare -A allowed=(
   [session]="session scene surgery tissue physics geometry math"
   [metrics]="metrics surgery tissue physics geometry math"
   [autopilot]="autopilot session scene surgery tissue physics geometry math devices haptics"
+  [report]="report metrics surgery tissue physics geometry math"
   [console]="console session scene surgery tissue physics geometry math devices haptics metrics"
 )
 bad=0

@@ -15,6 +15,8 @@ Commands add_commands(CLI::App& app) {
   c.sai = add_sai_command(app);
   c.heatmap = add_heatmap_command(app);
   c.history = add_history_command(app);
+  c.experiment = add_experiment_command(app);
+  c.demo = add_demo_command(app);
   return c;
 }
 
@@ -29,6 +31,8 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("sai")) return run_sai_command(*c.sai);
   if (app.got_subcommand("heatmap")) return run_heatmap_command(*c.heatmap);
   if (app.got_subcommand("history")) return run_history_command(*c.history);
+  if (app.got_subcommand("experiment")) return run_experiment_command(*c.experiment);
+  if (app.got_subcommand("demo")) return run_demo_command(*c.demo);
   return 0;
 }
 

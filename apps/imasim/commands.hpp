@@ -5,8 +5,10 @@
 #include <memory>
 
 #include "cloth_command.hpp"
+#include "demo_command.hpp"
 #include "device_emulator_command.hpp"
 #include "devices_command.hpp"
+#include "experiment_command.hpp"
 #include "haptics_bench_command.hpp"
 #include "heatmap_command.hpp"
 #include "history_command.hpp"
@@ -28,6 +30,8 @@ struct Commands {
   std::shared_ptr<SaiOptions> sai;
   std::shared_ptr<HeatmapOptions> heatmap;
   std::shared_ptr<HistoryOptions> history;
+  std::shared_ptr<ExperimentOptions> experiment;
+  std::shared_ptr<DemoOptions> demo;
 };
 
 // Registers every subcommand on `app` (one is required).

@@ -1,0 +1,165 @@
+// `imasim experiment` as a user runs it: four short trials of the example script in two processes
+// at a time, one of them stopped (SIGSTOP, a hung trial) and killed by --trial-timeout while the
+// others are kept; the report, results.json and trials.csv hold every trial; Ctrl-C (SIGINT)
+// still writes the report of what finished; bad requests are refused with a message.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli_process.hpp"
+
+namespace {
+
+using imasim::test::Finished;
+using imasim::test::lines_of;
+using imasim::test::read_file;
+
+const std::string kDir = ::testing::TempDir();
+const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
+// Longer than a 0.5 s trial takes here (a few seconds) with room for a loaded machine; the
+// stopped trial waits for it.
+constexpr int kTrialTimeout = 15;
+
+// Runs `imasim ARGS` in the background, then `while_running` (a shell snippet with $P, the
+// experiment's pid), and waits for it; its exit status is printed last on stdout as "exit=N".
+Finished experiment(const std::string& args, const std::string& while_running,
+                    const std::string& name) {
+  const std::string err = kDir + name + ".err";
+  const std::string script = std::string(IMASIM_EXE) + " experiment " + args + " >" + kDir + name +
+                             ".out 2>" + err + " & P=$!; " + while_running +
+                             "; wait $P; echo exit=$?";
+  Finished f = imasim::test::run_shell("sh -c '" + script + "'", err);
+  f.out = read_file(kDir + name + ".out") + f.out;
+  return f;
+}
+
+int exit_status(const Finished& f) {
+  const std::size_t at = f.out.rfind("exit=");
+  return at == std::string::npos ? -1 : std::stoi(f.out.substr(at + 5));
+}
+
+std::size_t field_count(const std::string& line) {
+  return std::size_t(std::count(line.begin(), line.end(), ',')) + 1;
+}
+
+// Waits (at most 20 s) for the experiment's first child and stops it.
+const std::string kStopOneTrial =
+    "for i in $(seq 200); do C=$(pgrep -P $P | head -n 1); [ -n \"$C\" ] && break; sleep 0.1; "
+    "done; kill -STOP $C";
+
+TEST(CliExperiment, AStoppedTrialIsKilledByItsTimeoutAndTheOthersAreKept) {
+  const std::string out = kDir + "imasim_study";
+  const Finished f = experiment("--trials 2 --modes dynamic,static --script " + kScript +
+                                    " --seconds 0.5 --jobs 2 --out " + out + " --trial-timeout " +
+                                    std::to_string(kTrialTimeout) + " --json",
+                                kStopOneTrial, "imasim_study");
+  ASSERT_EQ(exit_status(f), 0) << f.out << f.err;
+  const nlohmann::json summary = nlohmann::json::parse(f.out.substr(0, f.out.rfind("exit=")));
+  EXPECT_EQ(summary["trials"], 4);
+  EXPECT_EQ(summary["trials_ok"], 3);
+  EXPECT_EQ(summary["trials_failed"], 1);
+  EXPECT_EQ(summary["report"], out + "/report.html");
+
+  const nlohmann::json results = nlohmann::json::parse(read_file(out + "/results.json"));
+  EXPECT_EQ(results["format"], "imasim study v1");
+  EXPECT_EQ(results["study"]["operator"], "script");
+  EXPECT_EQ(results["study"]["modes"], nlohmann::json({"dynamic", "static"}));
+  EXPECT_EQ(results["headline"]["instrument"], "hook");
+  const nlohmann::json& trials = results["trials"];
+  ASSERT_EQ(trials.size(), 4u);
+  int failed = 0;
+  for (const nlohmann::json& t : trials) {
+    const std::string stem = out + "/trials/" + t["mode"].get<std::string>() + "-0" +
+                             std::to_string(t["trial"].get<int>());
+    EXPECT_EQ(t["files"]["log"], stem + ".log");
+    if (t["status"] == "failed") {
+      ++failed;
+      EXPECT_EQ(t["reason"], "timed out after " + std::to_string(kTrialTimeout) +
+                                 " s of wall-clock time (killed)");
+      EXPECT_GE(t["wall_s"].get<double>(), kTrialTimeout);
+      continue;
+    }
+    // The trial's scores are its recording's side file's, and its stdout is the run's report.
+    const nlohmann::json side = nlohmann::json::parse(read_file(stem + ".json"));
+    EXPECT_EQ(t["sai"]["hook"]["sai"], side["run"]["scores"]["sai"]["hook"]["sai"]);
+    EXPECT_EQ(t["sai"]["forceps"]["samples"], 31);  // 0.5 s at 60 Hz
+    const nlohmann::json report = nlohmann::json::parse(read_file(stem + ".report.json"));
+    EXPECT_EQ(report["status"], "ok");
+    EXPECT_EQ(report["patient_seed"], t["patient_seed"]);
+    EXPECT_EQ(report["heart"], t["mode"] == "static" ? "static" : "beating");
+    EXPECT_EQ(t["metrics"].size(), side["run"]["scores"]["metrics"].size());
+  }
+  EXPECT_EQ(failed, 1);
+  // Trial k is the same patient in both modes; trials 1 and 2 are different patients.
+  EXPECT_EQ(trials[0]["patient_seed"], trials[2]["patient_seed"]);
+  EXPECT_EQ(trials[1]["patient_seed"], trials[3]["patient_seed"]);
+  EXPECT_NE(trials[0]["patient_seed"], trials[1]["patient_seed"]);
+
+  // One row a trial, the same fields in every row.
+  const std::vector<std::string> rows = lines_of(read_file(out + "/trials.csv"));
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[0].rfind("mode,trial,patient_seed,operator_seed,status,reason,wall_s,"
+                          "sai_forceps,sai_hook,time_to_complete_s,",
+                          0),
+            0u)
+      << rows[0];
+  for (const std::string& row : rows)
+    EXPECT_EQ(field_count(row), field_count(rows[0])) << row;
+  EXPECT_EQ(std::count_if(rows.begin(), rows.end(),
+                          [](const std::string& r) {
+                            return r.find(",failed,timed out") != std::string::npos;
+                          }),
+            1);
+
+  const std::string page = read_file(out + "/report.html");
+  EXPECT_NE(page.find("Table 1. Spatial Asymmetry Index per trial"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>1</td>"), std::string::npos);
+  EXPECT_NE(page.find("<tr><td>2</td>"), std::string::npos);
+  EXPECT_NE(page.find("title=\"timed out after"), std::string::npos);  // its cell in Table 1
+  EXPECT_NE(page.find("the input script " + kScript), std::string::npos);
+}
+
+TEST(CliExperiment, CtrlCStillWritesTheReportOfWhatFinished) {
+  const std::string out = kDir + "imasim_study_interrupted";
+  // One trial at a time: once the second has started (its log exists), the first is done;
+  // interrupt the study then.
+  const std::string second = out + "/trials/static-02.log";
+  std::filesystem::remove_all(out);
+  const Finished f = experiment(
+      "--trials 2 --modes static --script " + kScript + " --seconds 0.5 --jobs 1 --out " + out,
+      "for i in $(seq 600); do [ -e " + second + " ] && break; sleep 0.1; done; kill -INT $P",
+      "imasim_study_interrupted");
+  EXPECT_EQ(exit_status(f), 130) << f.out << f.err;
+  EXPECT_NE(f.out.find("Report: " + out + "/report.html"), std::string::npos) << f.out;
+  const nlohmann::json results = nlohmann::json::parse(read_file(out + "/results.json"));
+  EXPECT_EQ(results["study"]["status"], "interrupted");
+  ASSERT_EQ(results["trials"].size(), 2u);
+  EXPECT_EQ(results["trials"][0]["status"], "ok");
+  EXPECT_EQ(results["trials"][1]["status"], "failed");
+  EXPECT_EQ(results["trials"][1]["reason"], "interrupted (the study was stopped)");
+}
+
+TEST(CliExperiment, BadRequestsAreRefusedWithAMessage) {
+  const Finished twice = experiment("--trials 2 --modes dynamic,dynamic --script " + kScript +
+                                        " --out " + kDir + "imasim_study_bad",
+                                    "true", "imasim_study_bad");
+  EXPECT_EQ(exit_status(twice), 2);
+  EXPECT_NE(twice.err.find("--modes names 'dynamic' twice"), std::string::npos) << twice.err;
+  const Finished missing = experiment(
+      "--trials 2 --modes static --script /nonexistent.script"
+      " --out " +
+          kDir + "imasim_study_bad",
+      "true", "imasim_study_bad");
+  EXPECT_EQ(exit_status(missing), 2);
+  EXPECT_NE(missing.err.find("/nonexistent.script"), std::string::npos) << missing.err;
+  const Finished mode = experiment("--trials 2 --modes beating --out " + kDir + "imasim_study_bad",
+                                   "true", "imasim_study_bad");
+  EXPECT_NE(exit_status(mode), 0);
+  EXPECT_NE(mode.err.find("beating"), std::string::npos) << mode.err;
+}
+
+}  // namespace
