@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -29,8 +30,11 @@ constexpr int kTrialTimeout = 15;
 Finished experiment(const std::string& args, const std::string& while_running,
                     const std::string& name) {
   const std::string err = kDir + name + ".err";
-  const std::string script = std::string(IMASIM_EXE) + " experiment " + args + " >" + kDir + name +
-                             ".out 2>" + err + " & P=$!; " + while_running +
+  // Each study's trials append to records of its own, never to the user's.
+  const std::string db = kDir + name + ".sqlite";
+  std::remove(db.c_str());
+  const std::string script = std::string(IMASIM_EXE) + " experiment " + args + " --db " + db +
+                             " >" + kDir + name + ".out 2>" + err + " & P=$!; " + while_running +
                              "; wait $P; echo exit=$?";
   Finished f = imasim::test::run_shell("sh -c '" + script + "'", err);
   f.out = read_file(kDir + name + ".out") + f.out;
@@ -121,6 +125,18 @@ TEST(CliExperiment, AStoppedTrialIsKilledByItsTimeoutAndTheOthersAreKept) {
   EXPECT_NE(page.find("<tr><td>2</td>"), std::string::npos);
   EXPECT_NE(page.find("title=\"timed out after"), std::string::npos);  // its cell in Table 1
   EXPECT_NE(page.find("the input script " + kScript), std::string::npos);
+
+  // The three scored trials are in the trainee records, under the study's trainee, and the
+  // report plots that trainee's history from them.
+  const Finished history = imasim::test::run_shell(
+      std::string(IMASIM_EXE) + " history --db " + kDir + "imasim_study.sqlite --json",
+      kDir + "imasim_study_history.err");
+  const nlohmann::json h = nlohmann::json::parse(history.out);
+  ASSERT_EQ(h["trainees"].size(), 1u);
+  EXPECT_EQ(h["trainees"][0]["trainee"], "scripted operator");
+  EXPECT_EQ(h["trainees"][0]["sessions"].size(), 3u);
+  EXPECT_NE(page.find("Trainee history"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out + "/history-sai.png"));
 }
 
 TEST(CliExperiment, CtrlCStillWritesTheReportOfWhatFinished) {

@@ -40,8 +40,9 @@ std::string fresh_path(const std::string& name) {
   const fs::path dir = fs::path(::testing::TempDir()) / "imasim_trainee_records";
   fs::create_directories(dir);
   const fs::path p = dir / name;
+  // remove_all: a name used as a folder by an earlier run goes too (the test runs again).
   for (const char* suffix : {"", "-wal", "-shm", "-journal"})
-    fs::remove(p.string() + suffix);
+    fs::remove_all(p.string() + suffix);
   return p.string();
 }
 

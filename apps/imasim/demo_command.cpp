@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "cli_checks.hpp"
+#include "study_records.hpp"
 
 namespace imasim::cli {
 
@@ -34,6 +35,7 @@ std::shared_ptr<DemoOptions> add_demo_command(CLI::App& app) {
   cmd->add_option("--jobs", r.jobs, "Trials at once (0 = the number of cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, 256));
+  add_study_records_options(*cmd, r.op);
   return opt;
 }
 

@@ -4,6 +4,7 @@
 
 #include "cli_checks.hpp"
 #include "report.hpp"
+#include "study_records.hpp"
 
 namespace imasim::cli {
 
@@ -53,6 +54,7 @@ std::shared_ptr<ExperimentOptions> add_experiment_command(CLI::App& app) {
       ->check(finite_range(0, 7 * 86400.0));
   cmd->add_flag("--progress", r.progress,
                 "Show the progress bar on stderr even when it is not a terminal");
+  add_study_records_options(*cmd, r.op);
   cmd->add_flag("--json", opt->json, "Print the summary as one JSON object on stdout");
   return opt;
 }

@@ -204,8 +204,8 @@ int run_run_command(const RunOptions& o) {
                  "--devices or --replay\n";
     return 2;
   }
-  const std::string devices = !o.devices.empty() ? o.devices
-                              : script             ? "script"
+  const std::string devices = !o.devices.empty()    ? o.devices
+                              : script              ? "script"
                               : o.autopilot.enabled ? "autopilot"
                                                     : "";
   const bool live = !devices.empty() && devices != "script" && devices != "autopilot";

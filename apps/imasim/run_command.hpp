@@ -42,7 +42,7 @@ struct RunOptions {
   std::optional<std::uint16_t> igtl_port;   // unset: the scene file's (devices.igtl_port)
   bool igtl_client = false;
   bool pedal = false;  // a foot switch (a joystick's buttons) drives the pedals and the clutch
-  AutopilotOptions autopilot;  // the scripted operator drives the instruments
+  AutopilotOptions autopilot;             // the scripted operator drives the instruments
   CLI::Option* seconds_option = nullptr;  // given on the command line?
 };
 

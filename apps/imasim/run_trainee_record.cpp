@@ -45,6 +45,7 @@ metrics::OperatorKind operator_kind_of(const std::string& devices, bool replay) 
   if (replay) return metrics::OperatorKind::replay;
   // The emulator's devices play an input script: no person moves them.
   if (devices == "script" || devices == "emulator") return metrics::OperatorKind::script;
+  if (devices == "autopilot") return metrics::OperatorKind::scripted_operator;
   return metrics::OperatorKind::human_device;
 }
 

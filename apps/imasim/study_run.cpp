@@ -10,6 +10,7 @@
 #include "metrics/output_file.hpp"
 #include "report/text_format.hpp"
 #include "study_progress.hpp"
+#include "study_records.hpp"
 #include "surgery/input_script.hpp"
 #include "trial_processes.hpp"
 
@@ -136,9 +137,14 @@ StudyOutcome run_study(const StudyRequest& r) {
   outcome.summary = report::summarize_study(r.modes, outcome.trials);
   const int signal = interrupt_signal();
   if (signal != 0) outcome.info.status = "interrupted";
+  std::string history_problem;
+  const std::vector<report::ReportImage> history =
+      study_history_figures(r.op, r.out_dir, history_problem);
+  if (!history_problem.empty())
+    std::cerr << r.who << ": note: no trainee history in the report: " << history_problem << '\n';
   try {
-    outcome.files =
-        report::write_study_files(r.out_dir, outcome.info, outcome.trials, outcome.summary);
+    outcome.files = report::write_study_files(r.out_dir, outcome.info, outcome.trials,
+                                              outcome.summary, history);
   } catch (const metrics::OutputError& e) {
     std::cerr << r.who << ": " << e.what() << '\n';
     outcome.exit_code = 4;

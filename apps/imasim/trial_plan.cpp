@@ -65,6 +65,12 @@ std::vector<std::string> trial_arguments(const TrialPlan& plan, const OperatorCh
   else
     args.insert(args.end(), {"--autopilot", "--operator-seed", std::to_string(plan.operator_seed)});
   if (op.seconds) args.insert(args.end(), {"--seconds", shortest(*op.seconds)});
+  if (op.no_db) {
+    args.push_back("--no-db");
+  } else {
+    args.insert(args.end(), {"--trainee", op.trainee});
+    if (!op.db.empty()) args.insert(args.end(), {"--db", op.db});
+  }
   return args;
 }
 

@@ -12,6 +12,11 @@ namespace imasim::cli {
 struct OperatorChoice {
   std::string script_file;        // empty: the scripted operator
   std::optional<double> seconds;  // simulated time (unit: s); unset: the run's default
+  // Where each scored trial is appended (the trainee records): a database, or the user's
+  // default when empty; none with `no_db`. `trainee` names the operator in them.
+  std::string db;
+  bool no_db = false;
+  std::string trainee = "scripted operator";
 };
 
 struct TrialPlan {
@@ -35,8 +40,8 @@ std::vector<TrialPlan> plan_trials(const std::vector<std::string>& modes, int tr
                                    std::uint64_t study_seed, const std::string& dir);
 
 // The arguments after the program's name: `run --headless --json --record CSV [--static]
-// --patient-seed N` and the operator's: `--script FILE [--seconds T]`, or `--autopilot
-// --operator-seed N [--seconds T]`.
+// --patient-seed N`, the operator's: `--script FILE [--seconds T]`, or `--autopilot
+// --operator-seed N [--seconds T]`, and the records': `--trainee NAME [--db PATH | --no-db]`.
 std::vector<std::string> trial_arguments(const TrialPlan& plan, const OperatorChoice& op);
 
 }  // namespace imasim::cli

@@ -25,18 +25,22 @@ constexpr Real kIncisionReach = Real(0.0025);  // (unit: m)
 // Dividing sweeps: the tip this far beside the vessel's centre and this high over it (towards
 // the wall) for a still heart: the fat strands that hold the vessel to the wall fan out from its
 // upper half, and there the tip's 4 mm cutting square (eq. 12) crosses all of them while the
-// electrode stays 2.4 mm from the vessel's wall.
-constexpr Real kSweepOffset = Real(0.003);    // (unit: m)
-constexpr Real kSweepHeight = Real(0.0025);   // (unit: m)
-constexpr Real kWallClearance = Real(0.001);  // the tip keeps this from the wall (unit: m)
-constexpr Real kSectionLength = Real(0.020);  // the segment is divided section by section (m)
-constexpr Real kLipOffset = Real(0.003);      // the forceps hold the lip this far out (unit: m)
-constexpr Real kRetractAway = Real(0.005);    // the held lip is drawn this far out ...
-constexpr Real kRetractDown = Real(0.003);    // ... and this far into the cavity (unit: m)
-constexpr Real kBelowFascia = Real(0.003);    // tools wait this far under the fascia (unit: m)
+// electrode stays 2 mm from the vessel's wall.
+constexpr Real kSweepOffset = Real(0.003);     // (unit: m)
+constexpr Real kSweepHeight = Real(0.002);     // (unit: m)
+constexpr Real kWallClearance = Real(0.0015);  // the tip keeps this from the wall (unit: m)
+constexpr Real kSectionLength = Real(0.020);   // the segment is divided section by section (m)
+constexpr Real kLipOffset = Real(0.003);       // the forceps hold the lip this far out (unit: m)
+constexpr Real kRetractAway = Real(0.005);     // the held lip is drawn this far out ...
+constexpr Real kRetractDown = Real(0.003);     // ... and this far into the cavity (unit: m)
+constexpr Real kBelowFascia = Real(0.003);     // tools wait this far under the fascia (unit: m)
 // The hook's wrist raises the electrode towards the wall at this share, the rest leaning across
 // the vessel from outside, so that the tip is the electrode's point nearest the vessel.
 constexpr Real kHookRise = Real(0.9);
+// The generator's power: 40 W to open the fascia, the lowest setting (30 W) beside the vessel,
+// where less heat spreads to its wall.
+constexpr Real kOpeningPower = 40;   // (unit: W)
+constexpr Real kDividingPower = 30;  // (unit: W)
 // Moves that keep the heart at bay go up (out of the cavity) in steps of this (unit: m).
 constexpr Real kClearanceStep = Real(0.00025);
 
@@ -141,7 +145,9 @@ class Planner {
     forceps_.jaw = jaw;
     plan_.forceps.push_back(forceps_);
   }
-  void pedal(CauteryMode mode) { plan_.pedal.push_back({hook_.time, mode}); }
+  void pedal(CauteryMode mode, Real power_w = kOpeningPower) {
+    plan_.pedal.push_back({hook_.time, mode, power_w});
+  }
   // Both hands continue from the later of their clocks.
   void sync() {
     const double t = now();
@@ -156,20 +162,36 @@ class Planner {
   }
   double now() const { return std::max(hook_.time, forceps_.time); }
 
-  // The hook cuts from arc length a to b, `across` and `up` from the vessel's centre.
-  void hook_sweep(Real a, Real b, Real across, Real up, Real entry_up) {
-    const Vec3 direction = (at(b, across, up) - at(a, across, up)).normalized();
+  // The hook's tip to arc length s, `across` and `up`, moving along the vessel (its cut plane
+  // faces along the vessel), with the pedal as it is.
+  void hook_to(Real s, Real across, Real up, Real speed) {
     const Real side = across < 0 ? Real(-1) : Real(1);
-    move_hook(hook_pose(at(a, across, entry_up), side, direction), kTravelSpeed);
-    move_hook(hook_pose(at(a, across, up), side, direction), kTravelSpeed);
-    pedal(CauteryMode::cut);
-    const int pieces = std::max(1, int(std::ceil((b - a) / Real(0.005))));  // follow the vessel
-    for (int i = 1; i <= pieces; ++i) {
-      const Real s = a + (b - a) * Real(i) / Real(pieces);
-      move_hook(hook_pose(at(s, across, up), side, direction), kCutSpeed);
-    }
+    move_hook(hook_pose(at(s, across, up), side, w_.tangent_at(s)), speed);
+  }
+  // The hook cuts from arc length a to b, `across` and `up` from the vessel's centre, in pieces
+  // that follow the vessel's course.
+  void hook_cut(Real a, Real b, Real across, Real up, Real power_w = kOpeningPower) {
+    hook_to(a, across, up, kTravelSpeed);
+    pedal(CauteryMode::cut, power_w);
+    const int pieces = std::max(1, int(std::ceil(std::abs(b - a) / Real(0.005))));
+    for (int i = 1; i <= pieces; ++i)
+      hook_to(a + (b - a) * Real(i) / Real(pieces), across, up, kCutSpeed);
     pedal(CauteryMode::off);
-    move_hook(hook_pose(at(b, across, entry_up), side, direction), kTravelSpeed);
+  }
+  // From one side of the vessel to the other at the segment's proximal end, where the heart is
+  // furthest: down through this side's incision, across under the fascia, up through the other.
+  void hook_cross(Real from_across, Real to_across, Real in_gap, Real below) {
+    hook_to(0, from_across, in_gap, kTravelSpeed);
+    hook_to(0, from_across, below, kTravelSpeed);
+    hook_to(0, to_across, below, kTravelSpeed);
+    hook_to(0, to_across, in_gap, kTravelSpeed);
+  }
+  // Back to the proximal end along an open incision, the pedal on cut so that the electrode parts
+  // whatever it meets there (the incision's line is already cut).
+  void hook_back_along(Real across, Real in_gap) {
+    pedal(CauteryMode::cut);
+    hook_to(0, across, in_gap, kTravelSpeed);
+    pedal(CauteryMode::off);
   }
 
  private:
@@ -207,46 +229,56 @@ HarvestPlan plan_harvest(const session::SurgicalSession& session, const Operator
   const WorkingFrame frame = make_working_frame(session, params.segment_length);
   Planner p(frame, params, session.params.cautery.electrode_length);
   const Real below = -(p.fascia_depth() + kBelowFascia);
-  const Real incision_up = -(p.fascia_depth() - kIncisionReach);
+  const Real in_gap = -(p.fascia_depth() - kIncisionReach);
+  const Real fascia = -p.fascia_depth();
+  const Real away = kIncisionOffset, heart_side = -kIncisionOffset;
 
   // 1. Open the fascia beside the vessel, proximal to distal: on the side away from the heart,
-  // then on the heart's side.
+  // then (crossing under the fascia at the proximal end) on the heart's side.
   p.phase("open");
-  p.hook_sweep(0, p.length(), kIncisionOffset, incision_up, below);
-  p.hook_sweep(0, p.length(), -kIncisionOffset, incision_up, below);
+  p.hook_to(0, away, below, kTravelSpeed);
+  p.hook_cut(0, p.length(), away, in_gap);
+  p.hook_back_along(away, in_gap);
+  p.hook_cross(away, heart_side, in_gap, below);
+  p.hook_cut(0, p.length(), heart_side, in_gap);
+  p.hook_back_along(heart_side, in_gap);
+  p.hook_cross(heart_side, away, in_gap, below);
 
-  // 2. Section by section: hold the outer lip of the incision away from the heart aside and
-  // divide the fat that holds the vessel to the wall, on the side away from the heart, then on
-  // the heart's side. With its strands divided the pedicle is free.
+  // 2. On each side, away from the heart first, proximal to distal in 2 cm sections: the
+  // forceps hold the incision's outer lip aside and the hook divides the fat that holds the
+  // vessel to the wall. With those strands divided the pedicle is free.
   p.sync();
   p.phase("divide");
   const int sections = std::max(1, int(std::lround(p.length() / kSectionLength)));
-  const Real lip = kIncisionOffset + kLipOffset;
-  const Real fascia = -p.fascia_depth();
-  for (int k = 0; k < sections; ++k) {
-    const Real a = p.length() * Real(k) / Real(sections);
-    const Real b = p.length() * Real(k + 1) / Real(sections);
-    const Real grip_s = (a + b) / 2;
-    p.move_forceps(p.forceps_pose(p.at(grip_s, lip, fascia - kBelowFascia)), 0, kTravelSpeed);
-    p.move_forceps(p.forceps_pose(p.at(grip_s, lip, fascia)), 0, kTravelSpeed);
-    p.hold_forceps(1, 0.4);  // close on the lip
-    p.move_forceps(p.forceps_pose(p.at(grip_s, lip + kRetractAway, fascia - kRetractDown)), 1,
-                   kTravelSpeed);
-    p.sync();
-    p.hook_sweep(a, b, kSweepOffset, p.sweep_height(), below);
-    p.hook_sweep(a, b, -kSweepOffset, p.sweep_height(), below);
-    p.sync();
-    p.hold_forceps(0, 0.4);  // release
-    p.move_forceps(p.forceps_pose(p.at(grip_s, lip + kRetractAway, fascia - kBelowFascia)), 0,
-                   kTravelSpeed);
+  for (const Real side : {Real(1), Real(-1)}) {
+    const Real lip = side * (kIncisionOffset + kLipOffset);
+    // Drawn out, and down only on the side away from the heart.
+    const Real drawn = lip + side * kRetractAway;
+    const Real drawn_up = side > 0 ? fascia - kRetractDown : fascia;
+    if (side < 0) {
+      p.hook_back_along(away, in_gap);
+      p.hook_cross(away, heart_side, in_gap, below);
+    }
+    for (int k = 0; k < sections; ++k) {
+      const Real a = p.length() * Real(k) / Real(sections);
+      const Real b = p.length() * Real(k + 1) / Real(sections);
+      const Real grip = (a + b) / 2;
+      p.move_forceps(p.forceps_pose(p.at(grip, lip, fascia)), 0, kTravelSpeed);
+      p.hold_forceps(1, 0.4);  // close on the lip
+      p.move_forceps(p.forceps_pose(p.at(grip, drawn, drawn_up)), 1, kTravelSpeed);
+      p.sync();
+      p.hook_cut(a, b, side * kSweepOffset, p.sweep_height(), kDividingPower);
+      p.sync();
+      p.hold_forceps(0, 0.4);  // release
+    }
+    p.hook_to(p.length(), side * kIncisionOffset, in_gap, kTravelSpeed);
   }
 
   // 3. Withdraw both tools under the fascia, clear of the freed pedicle.
   p.sync();
   p.phase("withdraw");
-  p.move_hook(p.hook_pose(p.at(p.length(), 2 * kIncisionOffset, below), 1,
-                          Vec3(p.at(p.length(), 0, 0) - p.at(0, 0, 0)).normalized()),
-              kTravelSpeed);
+  p.hook_to(p.length(), heart_side, below, kTravelSpeed);
+  p.move_forceps(p.forceps_pose(p.at(p.length(), away + kLipOffset, below)), 0, kTravelSpeed);
   p.sync();
   p.phase("done");
   return p.finish();

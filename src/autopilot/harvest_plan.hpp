@@ -36,6 +36,7 @@ struct ToolKey {
 struct PedalKey {
   double time = 0;  // (unit: s)
   haptics::CauteryMode mode = haptics::CauteryMode::off;
+  Real power_w = 40;  // the generator's setting from this time on (unit: W)
 };
 
 struct PhaseMark {

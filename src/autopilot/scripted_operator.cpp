@@ -47,7 +47,7 @@ void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
   const auto after = std::upper_bound(plan_.pedal.begin(), plan_.pedal.end(), now_s,
                                       [](double time, const PedalKey& k) { return time < k.time; });
   input.pedal = after == plan_.pedal.begin() ? haptics::CauteryMode::off : (after - 1)->mode;
-  input.power_w = power_w_;
+  input.power_w = after == plan_.pedal.begin() ? Real(40) : (after - 1)->power_w;
 }
 
 devices::DeviceInfo ScriptedOperator::info() const {

@@ -29,7 +29,6 @@ class ScriptedOperator final : public devices::InputDevice {
  private:
   HarvestPlan plan_;
   Tremor left_tremor_, right_tremor_;
-  Real power_w_ = 40;
 };
 
 // A key track sampled at t: poses and the jaw interpolated, held outside the keys.
