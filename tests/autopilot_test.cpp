@@ -203,6 +203,33 @@ TEST(ScriptedOperator, DrivesOnlyTheDeviceInterface) {
   EXPECT_EQ(op.info().kind, "autopilot");
 }
 
+TEST(ScriptedOperator, CorrectsItsHandsForWhereItSeesTheInstrumentsGo) {
+  // One key: the plan holds a pose. The instrument is seen 3 mm short of where the hand asks
+  // (as tissue pressing on the proxy would hold it): the hand moves on until the instrument is
+  // where the plan wants it.
+  HarvestPlan plan;
+  plan.forceps = plan.hook = {ToolKey{0, Pose{}, 0}};
+  plan.forceps[0].tool.translation = plan.hook[0].tool.translation = Vec3(0.01, 0.02, 0.03);
+  plan.end_time = 10;
+  ScriptedOperator op(plan, OperatorParams{.tremor = 0});
+  const Vec3 held_back(0, 0, -0.003);
+  devices::ConsoleInput in;
+  for (int k = 0; k < 200; ++k) {
+    op.observe(devices::Hand::right, in.right.pose.translation + held_back);
+    op.poll(0.005 * k, in);
+  }
+  EXPECT_NEAR((in.right.pose.translation + held_back - plan.hook[0].tool.translation).norm(), 0,
+              1e-9);
+  // Unobserved, the left hand plays the plan as it is.
+  EXPECT_EQ(in.left.pose.translation, plan.forceps[0].tool.translation);
+  // A tool that never moves (the heart stops it) is not pushed after by more than 10 mm.
+  for (int k = 0; k < 400; ++k) {
+    op.observe(devices::Hand::right, Vec3(0.01, 0.02, 0.0));
+    op.poll(1 + 0.005 * k, in);
+  }
+  EXPECT_NEAR((in.right.pose.translation - plan.hook[0].tool.translation).norm(), 0.01, 1e-12);
+}
+
 TEST(HarvestPlan, RefusesParametersOutOfRange) {
   const session::SurgicalSession s = default_session(false);
   EXPECT_THROW(plan_harvest(s, OperatorParams{.speed = 0}), std::invalid_argument);

@@ -33,8 +33,9 @@ Finished experiment(const std::string& args, const std::string& while_running,
   // Each study's trials append to records of its own, never to the user's.
   const std::string db = kDir + name + ".sqlite";
   std::remove(db.c_str());
-  const std::string script = std::string(IMASIM_EXE) + " experiment " + args + " --db " + db +
-                             " >" + kDir + name + ".out 2>" + err + " & P=$!; " + while_running +
+  const std::string records = args.find("--no-db") == std::string::npos ? " --db " + db : "";
+  const std::string script = std::string(IMASIM_EXE) + " experiment " + args + records + " >" +
+                             kDir + name + ".out 2>" + err + " & P=$!; " + while_running +
                              "; wait $P; echo exit=$?";
   Finished f = imasim::test::run_shell("sh -c '" + script + "'", err);
   f.out = read_file(kDir + name + ".out") + f.out;
@@ -59,7 +60,7 @@ TEST(CliExperiment, AStoppedTrialIsKilledByItsTimeoutAndTheOthersAreKept) {
   const std::string out = kDir + "imasim_study";
   const Finished f = experiment("--trials 2 --modes dynamic,static --script " + kScript +
                                     " --seconds 0.5 --jobs 2 --out " + out + " --trial-timeout " +
-                                    std::to_string(kTrialTimeout) + " --json",
+                                    std::to_string(kTrialTimeout) + " --json --no-db",
                                 kStopOneTrial, "imasim_study");
   ASSERT_EQ(exit_status(f), 0) << f.out << f.err;
   const nlohmann::json summary = nlohmann::json::parse(f.out.substr(0, f.out.rfind("exit=")));
@@ -126,17 +127,30 @@ TEST(CliExperiment, AStoppedTrialIsKilledByItsTimeoutAndTheOthersAreKept) {
   EXPECT_NE(page.find("title=\"timed out after"), std::string::npos);  // its cell in Table 1
   EXPECT_NE(page.find("the input script " + kScript), std::string::npos);
 
-  // The three scored trials are in the trainee records, under the study's trainee, and the
-  // report plots that trainee's history from them.
-  const Finished history = imasim::test::run_shell(
-      std::string(IMASIM_EXE) + " history --db " + kDir + "imasim_study.sqlite --json",
-      kDir + "imasim_study_history.err");
+  // No trainee records were asked for: the report has no history.
+  EXPECT_EQ(page.find("Trainee history"), std::string::npos);
+}
+
+TEST(CliExperiment, TheTrialsGoToTheTraineeRecordsAndTheReportPlotsTheirHistory) {
+  const std::string out = kDir + "imasim_study_records";
+  std::filesystem::remove_all(out);
+  const Finished f = experiment("--trials 2 --modes dynamic,static --script " + kScript +
+                                    " --seconds 0.3 --jobs 2 --trainee study_operator --out " +
+                                    out,
+                                "true", "imasim_study_records");
+  ASSERT_EQ(exit_status(f), 0) << f.out << f.err;
+  const Finished history = imasim::test::run_shell(std::string(IMASIM_EXE) + " history --db " +
+                                                       kDir + "imasim_study_records.sqlite --json",
+                                                   kDir + "imasim_study_records_history.err");
   const nlohmann::json h = nlohmann::json::parse(history.out);
-  ASSERT_EQ(h["trainees"].size(), 1u);
-  EXPECT_EQ(h["trainees"][0]["trainee"], "scripted operator");
-  EXPECT_EQ(h["trainees"][0]["sessions"].size(), 3u);
+  ASSERT_EQ(h["trainees"].size(), 1u) << history.out;
+  EXPECT_EQ(h["trainees"][0]["trainee"], "study_operator");
+  EXPECT_EQ(h["trainees"][0]["sessions"].size(), 4u);
+  const std::string page = read_file(out + "/report.html");
   EXPECT_NE(page.find("Trainee history"), std::string::npos);
+  EXPECT_NE(page.find("4 recorded sessions"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(out + "/history-sai.png"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/history-passed.png"));
 }
 
 TEST(CliExperiment, CtrlCStillWritesTheReportOfWhatFinished) {

@@ -29,12 +29,36 @@ ScriptedOperator::ScriptedOperator(HarvestPlan plan, const OperatorParams& param
       left_tremor_(params.seed * 2 + 1, params.tremor),
       right_tremor_(params.seed * 2 + 2, params.tremor) {}
 
+namespace {
+
+// The share of the last step's error the correction takes up each step, and the largest
+// correction: a tool the heart or the chest wall stops is not pushed after without end.
+constexpr Real kServoGain = Real(0.2);
+constexpr Real kMaxCorrection = Real(0.01);  // (unit: m)
+
+}  // namespace
+
+void ScriptedOperator::observe(devices::Hand hand, const Vec3& hinge) {
+  Servo& s = servo_[hand == devices::Hand::left ? 0 : 1];
+  s.observed = hinge;
+  s.has_observed = true;
+}
+
 void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
   const auto drive = [now_s](const std::vector<ToolKey>& track, const Tremor& tremor,
-                             devices::HandInput& hand) {
+                             Servo& servo, devices::HandInput& hand) {
     const ToolKey k = sample_tool_track(track, now_s);
     hand.pose = k.tool;
     hand.pose.translation += tremor.at(now_s);
+    if (servo.has_asked && servo.has_observed) {
+      servo.correction += kServoGain * (servo.asked - servo.observed);
+      const Real n = servo.correction.norm();
+      if (n > kMaxCorrection) servo.correction *= kMaxCorrection / n;
+    }
+    servo.asked = hand.pose.translation;
+    servo.has_asked = true;
+    servo.has_observed = false;
+    hand.pose.translation += servo.correction;
     hand.frame = devices::PoseFrame::tool;
     hand.time_s = now_s;
     hand.has_pose = true;
@@ -42,8 +66,8 @@ void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
     hand.clutch = false;
     hand.jaw = k.jaw;
   };
-  drive(plan_.forceps, left_tremor_, input.left);
-  drive(plan_.hook, right_tremor_, input.right);
+  drive(plan_.forceps, left_tremor_, servo_[0], input.left);
+  drive(plan_.hook, right_tremor_, servo_[1], input.right);
   const auto after = std::upper_bound(plan_.pedal.begin(), plan_.pedal.end(), now_s,
                                       [](double time, const PedalKey& k) { return time < k.time; });
   input.pedal = after == plan_.pedal.begin() ? haptics::CauteryMode::off : (after - 1)->mode;

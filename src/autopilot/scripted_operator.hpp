@@ -3,8 +3,15 @@
 // interface as a surgeon's hands (devices/input_device.hpp): a tool pose per hand (the hinge, as
 // a tracker on the instrument reports it), the jaws and the cautery pedal. It never reads or
 // writes tissue state. Poses interpolate between the plan's keys (position linearly, rotation by
-// slerp) and carry the operator's tremor; everything is a function of time, the plan and the
-// seed, so a trial is bit-for-bit repeatable.
+// slerp) and carry the operator's tremor.
+//
+// Like a surgeon watching the endoscope, it sees where its instruments are (`observe`: the
+// instrument's hinge, which the tissue it presses on pushes away from the hand's pose through the
+// tool proxy) and corrects its hands by integrating the error between where it wanted the
+// instrument and where it went, within a bounded reach. Everything is a function of time, the
+// plan, the seed and what it observed, so a trial is bit-for-bit repeatable.
+#include <array>
+
 #include "autopilot/harvest_plan.hpp"
 #include "autopilot/tremor.hpp"
 #include "devices/input_device.hpp"
@@ -21,14 +28,26 @@ class ScriptedOperator final : public devices::InputDevice {
   bool connected() const override { return true; }
   devices::DeviceInfo info() const override;
 
+  // Where an instrument's hinge is now (the scene frame; unit: m), for the next poll.
+  void observe(devices::Hand hand, const Vec3& hinge);
+
   const HarvestPlan& plan() const { return plan_; }
   bool finished(double now_s) const { return now_s >= plan_.end_time; }
   // The phase under way at a time ("" before the first).
   const std::string& phase_at(double now_s) const;
 
  private:
+  // Per hand: the correction added to the plan, the pose it last asked for (with tremor, before
+  // the correction) and what it observed since.
+  struct Servo {
+    Vec3 correction = Vec3::Zero();  // (unit: m)
+    Vec3 asked = Vec3::Zero();       // (unit: m)
+    Vec3 observed = Vec3::Zero();    // (unit: m)
+    bool has_asked = false, has_observed = false;
+  };
   HarvestPlan plan_;
   Tremor left_tremor_, right_tremor_;
+  std::array<Servo, 2> servo_{};
 };
 
 // A key track sampled at t: poses and the jaw interpolated, held outside the keys.
