@@ -69,6 +69,21 @@ report::StudyInfo study_info(const StudyRequest& r, int jobs) {
   return info;
 }
 
+// How the run says it ended, from its report (its stdout): "the simulation refused step N
+// (speed_limit)" and the like; empty when the report is missing or says "ok".
+std::string run_status_of(const std::string& report_path) {
+  const TextFile text = read_text_file(report_path, kMaxSideFileBytes, "trial's report");
+  if (!text.error.empty()) return "";
+  const nlohmann::json j = nlohmann::json::parse(text.text, nullptr, false);
+  if (!j.is_object() || !j.contains("status") || !j["status"].is_string()) return "";
+  const std::string status = j["status"].get<std::string>();
+  if (status == "ok") return "";
+  std::string said = "the run ended with status " + status;
+  if (j.contains("failed_step") && j["failed_step"].is_number_unsigned())
+    said += " at step " + std::to_string(j["failed_step"].get<std::uint64_t>());
+  return said;
+}
+
 report::TrialResult trial_result(const TrialPlan& plan, const TrialExit& exit,
                                  const StudyRequest& r) {
   report::TrialResult t;
@@ -83,8 +98,12 @@ report::TrialResult trial_result(const TrialPlan& plan, const TrialExit& exit,
              {"log", plan.log}};
   if (!exit.ok()) {
     t.reason = exit.describe(r.trial_timeout_s);
-    if (exit.end == TrialExit::End::exited || exit.end == TrialExit::End::signalled)
-      if (const std::string line = last_log_line(plan.log); !line.empty()) t.reason += ": " + line;
+    if (exit.end == TrialExit::End::exited || exit.end == TrialExit::End::signalled) {
+      if (const std::string status = run_status_of(plan.report); !status.empty())
+        t.reason += ": " + status;
+      else if (const std::string line = last_log_line(plan.log); !line.empty())
+        t.reason += ": " + line;
+    }
     return t;
   }
   const TextFile side = read_text_file(plan.side, kMaxSideFileBytes, "trial's side file");

@@ -35,6 +35,9 @@ namespace {
 // correction: a tool the heart or the chest wall stops is not pushed after without end.
 constexpr Real kServoGain = Real(0.2);
 constexpr Real kMaxCorrection = Real(0.01);  // (unit: m)
+// The correction grows by at most this a poll (20 mm/s at the 5 ms step): a tool released by
+// what held it back does not jump, and launch the tissue under it.
+constexpr Real kMaxCorrectionStep = Real(1e-4);  // (unit: m)
 
 }  // namespace
 
@@ -45,13 +48,15 @@ void ScriptedOperator::observe(devices::Hand hand, const Vec3& hinge) {
 }
 
 void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
-  const auto drive = [now_s](const std::vector<ToolKey>& track, const Tremor& tremor,
-                             Servo& servo, devices::HandInput& hand) {
+  const auto drive = [now_s](const std::vector<ToolKey>& track, const Tremor& tremor, Servo& servo,
+                             devices::HandInput& hand) {
     const ToolKey k = sample_tool_track(track, now_s);
     hand.pose = k.tool;
     hand.pose.translation += tremor.at(now_s);
     if (servo.has_asked && servo.has_observed) {
-      servo.correction += kServoGain * (servo.asked - servo.observed);
+      Vec3 step = kServoGain * (servo.asked - servo.observed);
+      if (const Real n = step.norm(); n > kMaxCorrectionStep) step *= kMaxCorrectionStep / n;
+      servo.correction += step;
       const Real n = servo.correction.norm();
       if (n > kMaxCorrection) servo.correction *= kMaxCorrection / n;
     }
