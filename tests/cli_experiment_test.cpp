@@ -135,13 +135,12 @@ TEST(CliExperiment, TheTrialsGoToTheTraineeRecordsAndTheReportPlotsTheirHistory)
   const std::string out = kDir + "imasim_study_records";
   std::filesystem::remove_all(out);
   const Finished f = experiment("--trials 2 --modes dynamic,static --script " + kScript +
-                                    " --seconds 0.3 --jobs 2 --trainee study_operator --out " +
-                                    out,
+                                    " --seconds 0.3 --jobs 2 --trainee study_operator --out " + out,
                                 "true", "imasim_study_records");
   ASSERT_EQ(exit_status(f), 0) << f.out << f.err;
-  const Finished history = imasim::test::run_shell(std::string(IMASIM_EXE) + " history --db " +
-                                                       kDir + "imasim_study_records.sqlite --json",
-                                                   kDir + "imasim_study_records_history.err");
+  const Finished history = imasim::test::run_shell(
+      std::string(IMASIM_EXE) + " history --db " + kDir + "imasim_study_records.sqlite --json",
+      kDir + "imasim_study_records_history.err");
   const nlohmann::json h = nlohmann::json::parse(history.out);
   ASSERT_EQ(h["trainees"].size(), 1u) << history.out;
   EXPECT_EQ(h["trainees"][0]["trainee"], "study_operator");
