@@ -1,8 +1,6 @@
 #include "live_inputs.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +14,7 @@
 #include "devices/igtl_device.hpp"
 #include "devices/joystick_pedal_device.hpp"
 #include "devices/spacemouse_device.hpp"
+#include "spawn_self.hpp"
 #if IMASIM_HAS_OPENHAPTICS
 #include "devices/openhaptics_device.hpp"
 #endif
@@ -23,33 +22,22 @@
 #include "devices/force_dimension_device.hpp"
 #endif
 
-extern char** environ;
-
 namespace imasim::cli {
 
 namespace {
 
-// Starts `imasim device-emulator` (this very program) calling port `port`.
+// Starts `imasim device-emulator` (this very program) calling port `port`; its summary is not
+// imasim run's report: stdout to /dev/null, errors to ours.
 pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
                      double seconds, bool loop) {
-  const std::string self = "/proc/self/exe";
   std::vector<std::string> args = {
-      "imasim", "device-emulator",    "--script",  script,
-      "--port", std::to_string(port), "--seconds", std::to_string(seconds)};
+      "device-emulator",      "--script", script, "--port", std::to_string(port), "--seconds",
+      std::to_string(seconds)};
   if (loop) args.push_back("--loop");
   if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
-  std::vector<char*> argv;
-  for (std::string& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  // Its summary is not imasim run's report: stdout to /dev/null, errors to ours.
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  pid_t pid = -1;
-  const int e = posix_spawn(&pid, self.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (e != 0) throw std::runtime_error("cannot start the device emulator");
+  int error = 0;
+  const pid_t pid = spawn_self(args, "/dev/null", "", error);
+  if (pid < 0) throw std::runtime_error("cannot start the device emulator");
   return pid;
 }
 

@@ -1,8 +1,6 @@
 #include "trial_processes.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,8 +10,7 @@
 #include <thread>
 
 #include "interrupt.hpp"
-
-extern char** environ;
+#include "spawn_self.hpp"
 
 namespace imasim::cli {
 
@@ -36,25 +33,11 @@ double seconds_since(Clock::time_point t) {
 
 // Starts /proc/self/exe with `trial`'s arguments; -1 and `error` set when it cannot.
 pid_t spawn_trial(const TrialProcess& trial, std::string& error) {
-  std::vector<std::string> args = {"imasim"};
-  args.insert(args.end(), trial.args.begin(), trial.args.end());
-  std::vector<char*> argv;
-  for (std::string& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, trial.stdout_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, trial.stderr_path.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  const int e = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (e != 0) {
+  int e = 0;
+  const pid_t pid = spawn_self(trial.args, trial.stdout_path, trial.stderr_path, e);
+  if (pid < 0) {
     error = "cannot start the trial (" + trial.stdout_path + ", " + trial.stderr_path +
             "): " + std::strerror(e);
-    return -1;
   }
   return pid;
 }
