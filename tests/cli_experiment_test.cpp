@@ -148,6 +148,7 @@ TEST(CliExperiment, TheTrialsGoToTheTraineeRecordsAndTheReportPlotsTheirHistory)
   const std::string page = read_file(out + "/report.html");
   EXPECT_NE(page.find("Trainee history"), std::string::npos);
   EXPECT_NE(page.find("4 recorded sessions"), std::string::npos);
+  EXPECT_NE(page.find("Table 5. The sessions of &#39;study_operator&#39;"), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(out + "/history-sai.png"));
   EXPECT_TRUE(std::filesystem::exists(out + "/history-passed.png"));
 }

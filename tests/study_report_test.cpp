@@ -159,6 +159,23 @@ TEST(StudyReport, AMissingImageIsNamedInThePage) {
   EXPECT_EQ(page.find("<img"), std::string::npos);
 }
 
+TEST(StudyReport, TheTraineeHistoryTableIsShownEscaped) {
+  std::vector<TrialResult> trials = table1_trials();
+  const StudySummary s = summarize_study({"dynamic", "static"}, trials);
+  const ReportTable history{"Table 5. The sessions of 'A & B'",
+                            {"session", "SAI hook"},
+                            {{"1", "0.583"}, {"2", "<0.621>"}}};
+  const std::string page = study_report_html(table1_info(), trials, s, {}, {history});
+  EXPECT_NE(page.find("<h2>Trainee history</h2>"), std::string::npos);
+  EXPECT_NE(page.find("<caption>Table 5. The sessions of &#39;A &amp; B&#39;</caption>"),
+            std::string::npos)
+      << page.substr(page.find("Trainee history"), 300);
+  EXPECT_NE(page.find("<th>SAI hook</th>"), std::string::npos);
+  EXPECT_NE(page.find("<td>&lt;0.621&gt;</td>"), std::string::npos);
+  // Without records there is no history section.
+  EXPECT_EQ(study_report_html(table1_info(), trials, s).find("Trainee history"), std::string::npos);
+}
+
 TEST(StudyFiles, ResultsJsonAndTrialsCsvHoldEveryTrial) {
   std::vector<TrialResult> trials = table1_trials();
   trials[12].ok = false;

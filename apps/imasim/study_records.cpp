@@ -5,6 +5,7 @@
 #include "metrics/records_path.hpp"
 #include "metrics/trainee_progress.hpp"
 #include "metrics/trainee_records.hpp"
+#include "report/text_format.hpp"
 
 namespace imasim::cli {
 
@@ -64,18 +65,43 @@ metrics::LinePlot passed_plot(const std::vector<metrics::SessionRecord>& session
   return plot;
 }
 
+// The sessions as a table, at most the latest `kMaxRows`.
+constexpr std::size_t kMaxRows = 40;
+
+report::ReportTable history_table(const std::vector<metrics::SessionRecord>& sessions,
+                                  const std::string& trainee, const std::string& path) {
+  report::ReportTable table;
+  const std::size_t first = sessions.size() > kMaxRows ? sessions.size() - kMaxRows : 0;
+  table.caption = "Table 5. The sessions of '" + trainee + "' in the trainee records (" + path +
+                  ")" + (first > 0 ? ", the latest " + std::to_string(kMaxRows) : "") + ".";
+  table.header = {"session",  "date (UTC)",  "heart",         "status",
+                  "SAI hook", "SAI forceps", "metrics passed"};
+  const auto sai_text = [](const metrics::SessionRecord& r, const char* tool) {
+    const metrics::SaiResult* sai = metrics::find_sai(r, tool);
+    return sai ? report::fixed(double(sai->sai), 3) : std::string("-");
+  };
+  for (std::size_t i = first; i < sessions.size(); ++i) {
+    const metrics::SessionRecord& r = sessions[i];
+    const metrics::PassCount c = metrics::pass_count(r);
+    table.rows.push_back({std::to_string(i + 1), r.date_utc, metrics::to_string(r.heart), r.status,
+                          sai_text(r, "hook"), sai_text(r, "forceps"),
+                          std::to_string(c.passed) + " of " + std::to_string(c.total)});
+  }
+  return table;
+}
+
 }  // namespace
 
-std::vector<report::ReportImage> study_history_figures(const OperatorChoice& op,
-                                                       const std::string& dir,
-                                                       std::string& problem) {
-  std::vector<report::ReportImage> figures;
-  if (op.no_db) return figures;
+StudyHistory study_history(const OperatorChoice& op, const std::string& dir, std::string& problem) {
+  StudyHistory history;
+  std::vector<report::ReportImage>& figures = history.images;
+  if (op.no_db) return history;
   try {
     const std::string path = op.db.empty() ? metrics::default_records_path() : op.db;
     const metrics::TraineeRecords records(path, metrics::TraineeRecords::Access::read_only);
     const std::vector<metrics::SessionRecord> sessions = records.sessions(op.trainee);
-    if (sessions.empty()) return figures;
+    if (sessions.empty()) return history;
+    history.tables.push_back(history_table(sessions, op.trainee, path));
     const std::string n = std::to_string(sessions.size());
     const metrics::LinePlot sai = history_plot(sessions, op.trainee);
     if (!sai.series.empty()) {
@@ -96,7 +122,7 @@ std::vector<report::ReportImage> study_history_figures(const OperatorChoice& op,
   } catch (const std::exception& e) {
     problem = e.what();
   }
-  return figures;
+  return history;
 }
 
 }  // namespace imasim::cli

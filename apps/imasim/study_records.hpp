@@ -15,10 +15,13 @@ namespace imasim::cli {
 // Registers --trainee, --db and --no-db on `experiment` or `demo`.
 void add_study_records_options(CLI::App& cmd, OperatorChoice& op);
 
-// The history figures of `op.trainee` in the records the trials were appended to (none with
-// `no_db`, or when the records cannot be read: then `problem` says why), drawn into `dir`.
-std::vector<report::ReportImage> study_history_figures(const OperatorChoice& op,
-                                                       const std::string& dir,
-                                                       std::string& problem);
+struct StudyHistory {
+  std::vector<report::ReportTable> tables;  // the trainee's sessions, the latest last
+  std::vector<report::ReportImage> images;  // the plots, drawn into the study's folder
+};
+
+// The history of `op.trainee` in the records the trials were appended to, this study's included
+// (nothing with `no_db`, or when the records cannot be read: then `problem` says why).
+StudyHistory study_history(const OperatorChoice& op, const std::string& dir, std::string& problem);
 
 }  // namespace imasim::cli

@@ -157,13 +157,12 @@ StudyOutcome run_study(const StudyRequest& r) {
   const int signal = interrupt_signal();
   if (signal != 0) outcome.info.status = "interrupted";
   std::string history_problem;
-  const std::vector<report::ReportImage> history =
-      study_history_figures(r.op, r.out_dir, history_problem);
+  const StudyHistory history = study_history(r.op, r.out_dir, history_problem);
   if (!history_problem.empty())
     std::cerr << r.who << ": note: no trainee history in the report: " << history_problem << '\n';
   try {
     outcome.files = report::write_study_files(r.out_dir, outcome.info, outcome.trials,
-                                              outcome.summary, history);
+                                              outcome.summary, history.images, history.tables);
   } catch (const metrics::OutputError& e) {
     std::cerr << r.who << ": " << e.what() << '\n';
     outcome.exit_code = 4;

@@ -71,6 +71,13 @@ struct ReportImage {
   std::string png_path;
 };
 
+// A table the report shows with those images (the trainee's history): its cells as text.
+struct ReportTable {
+  std::string caption;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
 // Fills `trial`'s scores (SAI per instrument, metrics, heat maps) from a run's recording side
 // file (its JSON text `text`, read from `path`). Throws StudyDataError naming the file and the
 // key when the scores are missing or malformed.

@@ -156,7 +156,8 @@ std::string trials_csv(const std::vector<TrialResult>& trials, const StudySummar
 
 StudyFiles write_study_files(const std::string& dir, const StudyInfo& info,
                              const std::vector<TrialResult>& trials, const StudySummary& summary,
-                             const std::vector<ReportImage>& images) {
+                             const std::vector<ReportImage>& images,
+                             const std::vector<ReportTable>& tables) {
   StudyFiles files{dir + "/report.html", dir + "/results.json", dir + "/trials.csv"};
   auto write = [](const std::string& path, const char* what, const std::string& text) {
     metrics::OutputFile f(path, what);
@@ -166,7 +167,8 @@ StudyFiles write_study_files(const std::string& dir, const StudyInfo& info,
   write(files.results_json, "the study's results",
         study_results_json(info, trials, summary).dump(2) + "\n");
   write(files.trials_csv, "the study's trial table", trials_csv(trials, summary));
-  write(files.report_html, "the study's report", study_report_html(info, trials, summary, images));
+  write(files.report_html, "the study's report",
+        study_report_html(info, trials, summary, images, tables));
   return files;
 }
 

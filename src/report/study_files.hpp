@@ -24,6 +24,7 @@ struct StudyFiles {
 // Writes the three files into `dir` (which exists). Throws metrics::OutputError.
 StudyFiles write_study_files(const std::string& dir, const StudyInfo& info,
                              const std::vector<TrialResult>& trials, const StudySummary& summary,
-                             const std::vector<ReportImage>& images = {});
+                             const std::vector<ReportImage>& images = {},
+                             const std::vector<ReportTable>& tables = {});
 
 }  // namespace imasim::report

@@ -156,10 +156,26 @@ std::string result_words(const SaiComparison& c) {
   return h;
 }
 
+// A table of text cells, every cell escaped.
+std::string text_table_html(const ReportTable& table) {
+  std::string h = "<table><caption>" + html_escape(table.caption) + "</caption><thead><tr>";
+  for (const std::string& cell : table.header)
+    h += "<th>" + html_escape(cell) + "</th>";
+  h += "</tr></thead><tbody>";
+  for (const std::vector<std::string>& row : table.rows) {
+    h += "<tr>";
+    for (const std::string& cell : row)
+      h += "<td>" + html_escape(cell) + "</td>";
+    h += "</tr>";
+  }
+  return h + "</tbody></table>";
+}
+
 }  // namespace
 
 std::string study_report_html(const StudyInfo& info, const std::vector<TrialResult>& trials,
-                              const StudySummary& summary, const std::vector<ReportImage>& images) {
+                              const StudySummary& summary, const std::vector<ReportImage>& images,
+                              const std::vector<ReportTable>& tables) {
   const SaiComparison& headline = headline_sai(summary);
   std::string title = "IMA harvesting study";
   if (info.modes.size() == 2) title += ": " + info.modes[0] + " versus " + info.modes[1] + " heart";
@@ -187,8 +203,11 @@ std::string study_report_html(const StudyInfo& info, const std::vector<TrialResu
        "projected onto the plane of the chest wall, coloured by density, as the paper's Fig. 13; "
        "each group is shown by its trial whose hook SAI is nearest the group's mean.</p>" +
        html::heat_maps(trials, summary) + "</section>";
-  if (!images.empty()) {
-    h += "<section id=\"figures\"><h2>Figures</h2><div class=\"figures\">";
+  if (!images.empty() || !tables.empty()) {
+    h += "<section id=\"history\"><h2>Trainee history</h2>";
+    for (const ReportTable& table : tables)
+      h += text_table_html(table);
+    h += "<div class=\"figures\">";
     for (const ReportImage& image : images)
       h += html::figure(image.png_path, image.caption);
     h += "</div></section>";

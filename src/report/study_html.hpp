@@ -14,6 +14,7 @@ namespace imasim::report {
 // instead.
 std::string study_report_html(const StudyInfo& info, const std::vector<TrialResult>& trials,
                               const StudySummary& summary,
-                              const std::vector<ReportImage>& images = {});
+                              const std::vector<ReportImage>& images = {},
+                              const std::vector<ReportTable>& tables = {});
 
 }  // namespace imasim::report
