@@ -51,7 +51,8 @@ SANITIZE_CONFIGURE = cmake -S . -B $(ASAN_BUILD) -DCMAKE_CXX_COMPILER=clang++ \
 unit-asan: deps
 	$(SANITIZE_CONFIGURE)
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target imasim_unit_tests imasim_fuzzers
-	cd $(ASAN_BUILD) && ctest --output-on-failure -j $(JOBS) -L unit -E '$(ASAN_SKIP)'
+	cd $(ASAN_BUILD) && LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp \
+	  ctest --output-on-failure -j $(JOBS) -L unit -E '$(ASAN_SKIP)'
 
 # libFuzzer targets (fuzz/): the scene file, each mesh format, the input script, the command
 # line and OpenIGTLink messages, built in the sanitizer build above. `make test` runs each for a
