@@ -166,6 +166,35 @@ TEST(ToolProxy, BalanceRelaxationAndBound) {
   EXPECT_TRUE(state.offset.allFinite());
 }
 
+TEST(ToolProxy, AgainstTissueFarStifferThanTheCouplingTheProxySettlesInsteadOfSwinging) {
+  // Tissue of local stiffness k_t = 20 k pushing with F = F0 - k_t o (o the offset along z): the
+  // balance is o* = F0 / (k + k_t). A fixed relaxation of 0.5 multiplies the error by
+  // 1 - 0.5 (1 + 20) = -9.5 a step and swings the proxy from bound to bound; the secant estimate
+  // of k_t brings the step down to k / (k + k_t) and the proxy settles on o*.
+  ProxyParams params;
+  ProxyState state;
+  const Real k = params.stiffness[std::size_t(Tissue::ima)], k_t = 20 * k, f0 = 1;
+  const Real balance = f0 / (k + k_t);
+  Real largest = 0;
+  for (int n = 0; n < 60; ++n) {
+    update_proxy(params, Vec3(0, 0, f0 - k_t * state.offset.z()), Tissue::ima, state);
+    largest = std::max(largest, state.offset.norm());
+  }
+  EXPECT_NEAR(state.offset.z(), balance, 1e-6 * balance);
+  EXPECT_LT(largest, params.max_offset);  // never thrown to the bound
+  // With the fixed relaxation (no memory of k_t: the estimate forgotten each step) it swings.
+  ProxyState fixed;
+  ProxyParams forgetful = params;
+  forgetful.stiffness_memory = 0;
+  Real swing = 0;
+  for (int n = 0; n < 60; ++n) {
+    fixed.last_change = Vec3::Zero();  // no secant: the relaxation stays at 0.5
+    update_proxy(forgetful, Vec3(0, 0, f0 - k_t * fixed.offset.z()), Tissue::ima, fixed);
+    swing = std::max(swing, fixed.offset.norm());
+  }
+  EXPECT_NEAR(swing, params.max_offset, 1e-12);
+}
+
 TEST(ToolProxy, ForceOnTheToolIsTheOppositeOfTheContactsImpulsesPerStep) {
   physics::ContactSet contacts;
   physics::ContactRow a, b, other;

@@ -359,8 +359,12 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     tissue::anchor_new_vertices(s.scene.heart, w, s.cutter.mesh, cut.first_new_vertex,
                                 cut.new_vertices);
     if (cut.edges_split + cut.vertices_copied > 0) surgery::stiffen_coagulated(w, s.cautery);
+  }
+  if (pedal == surgery::PedalMode::cut) {
+    // eq. 10-12 with p at the electrode's tip, where it meets the strands: a strand that crosses
+    // the cutting square touches the live electrode, whether or not a particle of it (they are
+    // about a millimetre apart) lies within the contact radius.
     s.strand_cuts.clear();
-    // eq. 10-12 with p at the electrode's tip, where it meets the strands.
     const Pose tip{hook.pose.rotation, e[1]};
     const std::uint32_t strands =
         surgery::cut_strands(w, surgery::cut_plane(tip), s.params.strand_cut.width, s.strand_cuts);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/closest_point.hpp"
+#include "math/angles.hpp"
 
 namespace imasim::surgery {
 const char* to_string(PedalMode mode) {
@@ -30,6 +31,7 @@ void validate(const CauteryParams& p) {
   require(p.cut_heat_fraction >= 0 && p.cut_heat_fraction <= 1, "cut_heat_fraction in [0, 1]");
   require(p.coag_heat_fraction >= 0 && p.coag_heat_fraction <= 1, "coag_heat_fraction in [0, 1]");
   require(p.specific_heat > 0, "specific_heat must be > 0");
+  require(p.density > 0, "density must be > 0");
   require(p.coagulation_rise > 0 && p.injury_rise > 0, "temperature rises must be > 0");
   require(p.coagulated_compliance_factor > 0 && p.coagulated_compliance_factor <= 1,
           "coagulated_compliance_factor in (0, 1]");
@@ -71,7 +73,6 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
   const Real sigma = params.spread_radius / 2;
   const Vec3 lo = a.cwiseMin(b).array() - params.spread_radius;
   const Vec3 hi = a.cwiseMax(b).array() + params.spread_radius;
-  Real weight_sum = 0;
   for (std::uint32_t i = 0; i < P.size(); ++i) {
     const Vec3& x = P.position[i];
     if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any()) continue;
@@ -79,22 +80,23 @@ CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, P
     const Real r = (x - (a + geometry::closest_segment_parameter(x, a, b) * (b - a))).norm();
     if (r <= params.contact_radius) ++step.touching;
     if (r > params.spread_radius) continue;
-    const Real weight = std::exp(-(r / sigma) * (r / sigma));
     s.reached.push_back(i);
-    s.weight.push_back(weight);
-    weight_sum += weight;
+    s.weight.push_back(std::exp(-(r / sigma) * (r / sigma)));
   }
   // Heat only while the electrode touches tissue.
-  if (step.touching == 0 || !(weight_sum > 0)) return step;
+  if (step.touching == 0) return step;
   const Real fraction =
       pedal == PedalMode::cut ? params.cut_heat_fraction : params.coag_heat_fraction;
-  step.energy = fraction * params.power * dt;  // eta P dt (unit: J)
+  step.energy = fraction * params.power * dt;  // E = eta P dt (unit: J)
   s.dose += step.energy;
+  // The line source's volume, pi sigma^2 (L + sqrt(pi) sigma) (unit: m^3), and the tissue's
+  // heat capacity per volume rho c (unit: J/(m^3 K)).
+  const Real length = (b - a).norm();
+  const Real volume = kPi * sigma * sigma * (length + std::sqrt(kPi) * sigma);
+  const Real peak_rise = step.energy / (volume * params.density * params.specific_heat);
   for (std::size_t k = 0; k < s.reached.size(); ++k) {
     const std::uint32_t i = s.reached[k];
-    const Real heat = step.energy * s.weight[k] / weight_sum;  // q_i (unit: J)
-    // dT += q / (m c) with the particle's mass now (reached particles are dynamic: m > 0).
-    s.rise[i] += heat * P.inverse_mass[i] / params.specific_heat;
+    s.rise[i] += peak_rise * s.weight[k];  // q(r) / (rho c) (unit: K)
     const Real rise = s.rise[i];
     if (!s.coagulated[i] && rise >= params.coagulation_rise) {
       s.coagulated[i] = 1;

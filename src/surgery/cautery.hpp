@@ -2,12 +2,17 @@
 // Electrocautery (SPEC S4, S5): a hook or spatula electrode energised by the foot pedal in cut
 // or coagulation mode at 30-50 W. While the pedal is pressed and the electrode touches tissue
 // (a dynamic tissue particle within `contact_radius` of it), a share of the electrical energy,
-// eta P dt (unit: J), is deposited as heat in the particles within `spread_radius`, weighted by
-// exp(-(r / sigma)^2), sigma = spread_radius / 2. Each particle keeps its temperature rise dT_i
-// (an intensive state): heat q deposited on it raises it by q / (m_i c), m_i its mass at that
-// moment (no cooling: the rise only grows). A fascia cut, which re-applies eq. 5's masses for
-// the new vertex count, so leaves every temperature as it was; a vertex it makes takes its
-// parents' rise interpolated like its position (inherit_cautery_state). Past the coagulation
+// E = eta P dt (unit: J), heats the tissue around the electrode. The electrode is a line source
+// of length L with a Gaussian cross-section, sigma = spread_radius / 2: the heat per volume at
+// distance r from it is
+//   q(r) = E exp(-(r / sigma)^2) / (pi sigma^2 (L + sqrt(pi) sigma))        (unit: J/m^3),
+// whose integral over space is E (the two end caps together make one 3D Gaussian), cut off at
+// `spread_radius`. The tissue there is a continuum that the particles sample: a particle at r
+// rises by q(r) / (rho c) (no cooling: the rise only grows). The rise so depends on the distance
+// alone, not on how many particles happen to lie near the electrode (the fat's strands sample
+// their tissue sparsely) nor on their masses, so it does not change with the mesh's resolution
+// or with a cut. A vertex a cut makes takes its parents' rise interpolated like its position
+// (inherit_cautery_state). Past the coagulation
 // rise the tissue is coagulated: its stretch constraints take a stiffer material (compliance
 // times `coagulated_compliance_factor`) and it is drawn in the coagulated colour. On the IMA, a
 // rise past `injury_rise` is a thermal injury. Cut mode's cutting itself (fascia and strands) is
@@ -32,6 +37,7 @@ struct CauteryParams {
   // the energy leaves as steam), coagulation mode heats the surroundings.
   Real cut_heat_fraction = Real(0.2), coag_heat_fraction = Real(0.6);
   Real specific_heat = 3500;   // c of soft tissue (unit: J/(kg K))
+  Real density = 1050;         // rho of soft tissue (unit: kg/m^3)
   Real coagulation_rise = 23;  // 37 -> 60 degC coagulates (unit: K)
   Real injury_rise = 8;        // 37 -> 45 degC injures the IMA's wall (unit: K)
   Real coagulated_compliance_factor = Real(0.1);
@@ -42,7 +48,7 @@ void validate(const CauteryParams& params);
 
 struct CauteryState {
   std::vector<Real> rise;  // temperature rise per particle (unit: K)
-  Real dose = 0;           // heat deposited in all, for reports (unit: J)
+  Real dose = 0;           // heat delivered to the tissue, sum of E, for reports (unit: J)
   std::vector<std::uint8_t> coagulated, injured;
   std::size_t coagulated_count = 0;
   std::vector<std::uint8_t> heatable;  // per object: tissue the electrode can heat
