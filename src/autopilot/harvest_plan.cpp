@@ -24,16 +24,23 @@ constexpr Real kIncisionOffset = Real(0.007);  // (unit: m)
 constexpr Real kIncisionReach = Real(0.0025);  // (unit: m)
 // Dividing sweeps: the tip this far beside the vessel's centre and this high over it (towards
 // the wall) for a still heart: the fat strands that hold the vessel to the wall fan out from its
-// upper half, and there the tip's 4 mm cutting square (eq. 12) crosses all of them while the
-// electrode stays 2 mm from the vessel's wall.
-constexpr Real kSweepOffset = Real(0.003);     // (unit: m)
-constexpr Real kSweepHeight = Real(0.002);     // (unit: m)
-constexpr Real kWallClearance = Real(0.0015);  // the tip keeps this from the wall (unit: m)
-constexpr Real kSectionLength = Real(0.020);   // the segment is divided section by section (m)
-constexpr Real kLipOffset = Real(0.003);       // the forceps hold the lip this far out (unit: m)
-constexpr Real kRetractAway = Real(0.005);     // the held lip is drawn this far out ...
-constexpr Real kRetractDown = Real(0.003);     // ... and this far into the cavity (unit: m)
-constexpr Real kBelowFascia = Real(0.003);     // tools wait this far under the fascia (unit: m)
+// upper half, and there the tip's 4 mm cutting square (eq. 12) crosses most of them while the
+// electrode stays 2 mm from the vessel's wall (its heat there is a sixth of that at contact).
+constexpr Real kSweepOffset = Real(0.0025);  // (unit: m)
+constexpr Real kSweepHeight = Real(0.002);   // (unit: m)
+// Each sweep overlaps its neighbours and passes the segment's ends by this: a strand is divided
+// when the cutting square's plane passes it, not when the tip reaches it.
+constexpr Real kSweepOverlap = Real(0.003);  // (unit: m)
+// Then back along the section higher up, under the wall and a little further out, where the
+// strands end: it divides what the first sweep pushed aside, 2.8 mm from the vessel's wall.
+constexpr Real kReturnOffset = Real(0.003);      // (unit: m)
+constexpr Real kReturnBelowWall = Real(0.0015);  // (unit: m)
+constexpr Real kWallClearance = Real(0.0015);    // the tip keeps this from the wall (unit: m)
+constexpr Real kSectionLength = Real(0.020);     // the segment is divided section by section (m)
+constexpr Real kLipOffset = Real(0.003);         // the forceps hold the lip this far out (unit: m)
+constexpr Real kRetractAway = Real(0.005);       // the held lip is drawn this far out ...
+constexpr Real kRetractDown = Real(0.003);       // ... and this far into the cavity (unit: m)
+constexpr Real kBelowFascia = Real(0.003);       // tools wait this far under the fascia (unit: m)
 // The hook's wrist raises the electrode towards the wall at this share, the rest leaning across
 // the vessel from outside, so that the tip is the electrode's point nearest the vessel.
 constexpr Real kHookRise = Real(0.9);
@@ -86,10 +93,14 @@ class Planner {
   // The point at arc length s, `across` beside the vessel away from the heart (< 0: towards
   // it, shifted by the side bias) and `up` towards the wall.
   Vec3 at(Real s, Real across, Real up) const {
-    return w_.point_at(s) + (across + p_.side_bias) * w_.away + up * w_.wall_normal;
+    // Beyond the segment's ends, along its end tangents.
+    const Real inside = std::clamp(s, Real(0), length());
+    return w_.point_at(inside) + (s - inside) * w_.tangent_at(inside) +
+           (across + p_.side_bias) * w_.away + up * w_.wall_normal;
   }
   Real length() const { return w_.length(); }
   Real fascia_depth() const { return w_.fascia_depth; }
+  Real wall_height() const { return w_.wall_height; }
   Real sweep_height() const { return sweep_height_; }
 
   // The hook with its electrode's tip at `tip`, on the side `side` (+1 away from the heart, -1
@@ -101,6 +112,13 @@ class Planner {
     Pose pose;
     pose.rotation = tool_rotation(f, direction);
     pose.translation = tip - electrode_ * pose.rotation.col(2);
+    // The wrist bends only so far from the shaft (robotic_arm.hpp): place the hinge so that the
+    // electrode the arm can give puts its tip on `tip` (a few fixed-point rounds converge: the
+    // shaft's direction changes little with the hinge's small moves).
+    for (int round = 0; round < 8; ++round) {
+      const Pose reached = surgery::constrain_to_port(w_.hook_arm, pose);
+      pose.translation = tip - electrode_ * reached.rotation.col(2);
+    }
     return clear_of_heart(pose, electrode_);
   }
 
@@ -267,7 +285,10 @@ HarvestPlan plan_harvest(const session::SurgicalSession& session, const Operator
       p.hold_forceps(1, 0.4);  // close on the lip
       p.move_forceps(p.forceps_pose(p.at(grip, drawn, drawn_up)), 1, kTravelSpeed);
       p.sync();
-      p.hook_cut(a, b, side * kSweepOffset, p.sweep_height(), kDividingPower);
+      p.hook_cut(a - kSweepOverlap, b + kSweepOverlap, side * kSweepOffset, p.sweep_height(),
+                 kDividingPower);
+      p.hook_cut(b + kSweepOverlap, a - kSweepOverlap, side * kReturnOffset,
+                 p.wall_height() - kReturnBelowWall, kDividingPower);
       p.sync();
       p.hold_forceps(0, 0.4);  // release
     }

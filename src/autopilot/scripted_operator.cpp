@@ -38,6 +38,10 @@ constexpr Real kMaxCorrection = Real(0.01);  // (unit: m)
 // The correction grows by at most this a poll (20 mm/s at the 5 ms step): a tool released by
 // what held it back does not jump, and launch the tissue under it.
 constexpr Real kMaxCorrectionStep = Real(1e-4);  // (unit: m)
+// The operator keeps the pedal up while it sees its hook further than this from where it asked
+// for it (held back by tissue, stopped by the wall): an electrode is energised only where the
+// surgeon sees it, never where the tissue happened to push it.
+constexpr Real kOffLine = Real(0.0025);  // (unit: m)
 
 }  // namespace
 
@@ -71,11 +75,15 @@ void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
     hand.clutch = false;
     hand.jaw = k.jaw;
   };
+  const Servo& hook = servo_[1];
+  const bool hook_off_line =
+      hook.has_asked && hook.has_observed && (hook.asked - hook.observed).norm() > kOffLine;
   drive(plan_.forceps, left_tremor_, servo_[0], input.left);
   drive(plan_.hook, right_tremor_, servo_[1], input.right);
   const auto after = std::upper_bound(plan_.pedal.begin(), plan_.pedal.end(), now_s,
                                       [](double time, const PedalKey& k) { return time < k.time; });
-  input.pedal = after == plan_.pedal.begin() ? haptics::CauteryMode::off : (after - 1)->mode;
+  input.pedal =
+      after == plan_.pedal.begin() || hook_off_line ? haptics::CauteryMode::off : (after - 1)->mode;
   input.power_w = after == plan_.pedal.begin() ? Real(40) : (after - 1)->power_w;
 }
 
