@@ -15,11 +15,14 @@ using imasim::test::Finished;
 using imasim::test::read_file;
 
 const std::string kDir = ::testing::TempDir();
-const std::string kErr = kDir + "imasim_heatmap_stderr.txt";
+std::string err_file() {
+  return imasim::test::test_err_file(kDir, "imasim_heatmap");
+}
 const std::string kScript = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fascia.script";
 
 Finished run(const std::string& args) {
-  return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + kErr, kErr);
+  return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
+                                 err_file());
 }
 
 // Width and height from a PNG's header (IHDR), or {0, 0} when the file is no PNG.

@@ -19,14 +19,17 @@ using imasim::test::read_file;
 namespace fs = std::filesystem;
 
 const std::string kDir = ::testing::TempDir() + "imasim_history/";
-const std::string kErr = ::testing::TempDir() + "imasim_history_stderr.txt";
+std::string err_file() {
+  return imasim::test::test_err_file(::testing::TempDir(), "imasim_history");
+}
 const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
 
 // `env` first: the variables a test sets (XDG_DATA_HOME, USER) and none of the user's data home.
 Finished run(const std::string& args, const std::string& env = "") {
+  const std::string err = err_file();
   return imasim::test::run_shell("env XDG_DATA_HOME=" + kDir + "unused_data_home " + env + " " +
-                                     std::string(IMASIM_EXE) + " " + args + " 2>" + kErr,
-                                 kErr);
+                                     std::string(IMASIM_EXE) + " " + args + " 2>" + err,
+                                 err);
 }
 
 std::string fresh(const std::string& name) {

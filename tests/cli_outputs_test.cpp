@@ -21,23 +21,25 @@ using imasim::test::lines_of;
 using imasim::test::read_file;
 using imasim::test::run_shell;
 
-const std::string kErrPath = ::testing::TempDir() + "imasim_outputs_stderr.txt";
+std::string err_file() {
+  return imasim::test::test_err_file(::testing::TempDir(), "imasim_outputs");
+}
 
 // Runs `prefix imasim args`.
 Finished run(const std::string& args, const std::string& prefix = "") {
-  return run_shell(prefix + " " + std::string(IMASIM_EXE) + " " + args + " 2>" + kErrPath,
-                   kErrPath);
+  return run_shell(prefix + " " + std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
+                   err_file());
 }
 
 // Runs `imasim args`, and sends SIGTERM as soon as its stderr holds `text` (or after
 // `max_seconds`): a check on what a run says after some wall time, that does not depend on how
 // fast this machine sets the scene up.
 Finished run_until_stderr_says(const std::string& args, const std::string& text, int max_seconds) {
-  return run_shell("sh -c '" + std::string(IMASIM_EXE) + " " + args + " 2>" + kErrPath +
+  return run_shell("sh -c '" + std::string(IMASIM_EXE) + " " + args + " 2>" + err_file() +
                        " & pid=$!; i=0; while [ $i -lt " + std::to_string(max_seconds * 10) +
-                       " ] && ! grep -q \"" + text + "\" " + kErrPath +
+                       " ] && ! grep -q \"" + text + "\" " + err_file() +
                        "; do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid'",
-                   kErrPath);
+                   err_file());
 }
 
 const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";

@@ -3,6 +3,8 @@
 // captured and whose stderr goes to a file, kept apart.
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -34,6 +36,13 @@ inline std::vector<std::string> lines_of(const std::string& text) {
 }
 
 // Runs `command` (which sends its stderr to `err_path`), keeping stdout and stderr apart.
+// A file for the running test's stderr, `stem` and the test's own name: ctest runs two tests of
+// a suite at a time, and a file shared by the suite let one read the other's messages.
+inline std::string test_err_file(const std::string& directory, const std::string& stem) {
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  return directory + stem + "_" + (test ? test->name() : "none") + ".stderr";
+}
+
 inline Finished run_shell(const std::string& command, const std::string& err_path) {
   FILE* pipe = popen(command.c_str(), "r");
   Finished f;

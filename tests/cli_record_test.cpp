@@ -19,7 +19,9 @@ using imasim::test::lines_of;
 using imasim::test::read_file;
 
 const std::string kDir = ::testing::TempDir();
-const std::string kErr = kDir + "imasim_record_stderr.txt";
+std::string err_file() {
+  return imasim::test::test_err_file(kDir, "imasim_record");
+}
 const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
 
 // Recorded runs append to the trainee records of the user's data directory: here a temporary
@@ -28,8 +30,8 @@ const std::string kDataHome = kDir + "imasim_record_data_home";
 
 Finished run(const std::string& args, const std::string& prefix = "") {
   return imasim::test::run_shell(prefix + " env XDG_DATA_HOME=" + kDataHome + " " +
-                                     std::string(IMASIM_EXE) + " " + args + " 2>" + kErr,
-                                 kErr);
+                                     std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
+                                 err_file());
 }
 
 std::size_t field_count(const std::string& line) {

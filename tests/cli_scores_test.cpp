@@ -18,10 +18,13 @@ namespace {
 using imasim::test::Finished;
 
 const std::string kDir = ::testing::TempDir();
-const std::string kErr = kDir + "imasim_scores_stderr.txt";
+std::string err_file() {
+  return imasim::test::test_err_file(kDir, "imasim_scores");
+}
 
 Finished run(const std::string& args) {
-  return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + kErr, kErr);
+  return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
+                                 err_file());
 }
 
 // In the order printed (an ordered parse: nlohmann::json would sort them).
