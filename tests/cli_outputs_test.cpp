@@ -35,10 +35,12 @@ Finished run(const std::string& args, const std::string& prefix = "") {
 // `max_seconds`): a check on what a run says after some wall time, that does not depend on how
 // fast this machine sets the scene up.
 Finished run_until_stderr_says(const std::string& args, const std::string& text, int max_seconds) {
-  return run_shell("sh -c '" + std::string(IMASIM_EXE) + " " + args + " 2>" + err_file() +
-                       " & pid=$!; i=0; while [ $i -lt " + std::to_string(max_seconds * 10) +
-                       " ] && ! grep -q \"" + text + "\" " + err_file() +
-                       "; do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid'",
+  // The file is emptied first: the run's own redirection happens in the background job, and the
+  // loop must not find the text a previous run of this test left there.
+  return run_shell("sh -c ': >" + err_file() + "; " + std::string(IMASIM_EXE) + " " + args + " 2>" +
+                       err_file() + " & pid=$!; i=0; while [ $i -lt " +
+                       std::to_string(max_seconds * 10) + " ] && ! grep -q \"" + text + "\" " +
+                       err_file() + "; do sleep 0.1; i=$((i+1)); done; kill -TERM $pid; wait $pid'",
                    err_file());
 }
 
