@@ -135,7 +135,6 @@ WorkingFrame make_working_frame(const session::SurgicalSession& s, Real segment_
   f.hook_port = right->position;
   f.forceps_start = s.stations[0].pose;
   f.hook_start = s.stations[1].pose;
-  f.forceps_arm = s.stations[0].arm;
   f.hook_arm = s.stations[1].arm;
   return f;
 }

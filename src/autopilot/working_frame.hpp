@@ -21,9 +21,9 @@ struct WorkingFrame {
   Real heart_excursion = 0;  // largest heart displacement near the segment over a beat (unit: m)
   Vec3 forceps_port = Vec3::Zero(), hook_port = Vec3::Zero();  // pivots (unit: m)
   Pose forceps_start, hook_start;                              // the tools at set-up
-  // The arms' kinematics (the port's pivot, insertion range, the wrist's reach): a surgeon knows
-  // how far an instrument's wrist bends.
-  surgery::ArmParams forceps_arm, hook_arm;
+  // The hook arm's kinematics (the port's pivot, insertion range, the wrist's reach): a surgeon
+  // knows how far an instrument's wrist bends.
+  surgery::ArmParams hook_arm;
 
   // The centerline point and unit tangent at arc length s (clamped to the segment).
   Vec3 point_at(Real s) const;

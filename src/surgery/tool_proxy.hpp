@@ -18,7 +18,7 @@
 // (their impulse per step grows with the tool's own jump), is far stiffer than k, and a fixed r
 // then makes the proxy swing from bound to bound. So r = min(relaxation, 1 / (1 + k_t / k)), with
 // k_t estimated each step from the last change of force over the last change of offset (a
-// secant), decaying slowly so that one quiet step does not restore a large r.
+// secant), decaying by `stiffness_memory` with each new measurement and held at rest.
 #include <array>
 #include <cstdint>
 
@@ -34,7 +34,7 @@ struct ProxyParams {
   // copied from it by whoever sets up the haptics (docs/haptics.md).
   std::array<Real, kTissueCount> stiffness{300, 300, 200, 100, 400, 1000};
   Real relaxation = Real(0.5);        // largest fraction of the way to the balance per step (-)
-  Real stiffness_memory = Real(0.9);  // the estimated k_t's decay per step (-)
+  Real stiffness_memory = Real(0.9);  // the estimated k_t's decay per measurement (-)
   Real max_offset = Real(0.015);      // largest proxy-device distance (unit: m)
 };
 
