@@ -304,6 +304,40 @@ TEST(Cautery, VerticesACutMakesThroughHeatedTissueKeepItsTemperature) {
   EXPECT_EQ(warm, int(cut.new_vertices.size()));  // the whole cut runs through heated tissue
 }
 
+TEST(Cautery, TissueCoolsAtTheRateAHotSpotOfTheSourcesWidthConducts) {
+  HeatedFascia h;
+  tissue::TissueWorld& w = h.patch.world;
+  const Real dt = 0.005;
+  // tau = sigma^2 / (4 alpha): (1.5 mm)^2 / (4 x 1.4e-7 m^2/s) = 4.018 s.
+  EXPECT_NEAR(cooling_time(h.params), 2.25e-6 / 5.6e-7, 1e-9);
+  // Coagulate the vertex under the electrode and injure nothing; then the pedal comes up.
+  for (int n = 0; n < 400 && !h.state.coagulated[h.v]; ++n)
+    apply_cautery(w, h.params, PedalMode::coag, h.a, h.b, dt, h.state);
+  ASSERT_TRUE(h.state.coagulated[h.v]);
+  const std::vector<Real> hot = h.state.rise;
+  // The first step's fall is conduction's initial rate on a Gaussian peak of width sigma,
+  // d/dt [sigma^2 / (sigma^2 + 4 alpha t)] at t = 0 = -4 alpha / sigma^2.
+  cool_tissue(h.params, dt, h.state);
+  const Real sigma = h.params.spread_radius / 2;
+  const Real rate = (hot[h.v] - h.state.rise[h.v]) / (hot[h.v] * dt);
+  EXPECT_NEAR(rate, 4 * h.params.thermal_diffusivity / (sigma * sigma), 1e-3 * rate);
+  // Ten seconds later every rise is its start times exp(-t / tau); the flags stay.
+  for (int n = 1; n < 2000; ++n)
+    cool_tissue(h.params, dt, h.state);
+  const Real left = std::exp(-Real(10) / cooling_time(h.params));
+  for (std::size_t i = 0; i < hot.size(); ++i)
+    EXPECT_NEAR(h.state.rise[i], hot[i] * left, 1e-9 + 1e-9 * hot[i]) << i;
+  EXPECT_GT(h.state.rise[h.v], 0);
+  EXPECT_TRUE(h.state.coagulated[h.v]);
+  // Without diffusivity nothing cools.
+  h.params.thermal_diffusivity = 0;
+  const std::vector<Real> kept = h.state.rise;
+  cool_tissue(h.params, dt, h.state);
+  EXPECT_EQ(h.state.rise, kept);
+  h.params.thermal_diffusivity = -1;
+  EXPECT_THROW(validate(h.params), std::invalid_argument);
+}
+
 TEST(Cautery, PowerOutsideThirtyToFiftyWattsIsRefused) {
   CauteryParams p;
   p.power = 60;

@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "physics/executor.hpp"
+#include "session/surface_stops.hpp"
 #include "tissue/topology_change.hpp"
 
 namespace imasim::session {
@@ -104,6 +107,78 @@ TEST(SurgicalSession, InstrumentsStopAtTheHeart) {
     began = began ||
             (e.kind == surgery::EventKind::contact_begin && e.tissue == surgery::Tissue::heart);
   EXPECT_TRUE(began);
+}
+
+// The heart beats into an instrument held against it whose shaft runs obliquely to its surface:
+// the surface pushes the instrument out along its normal as it comes, step by step, and the
+// instrument follows it back, never jumping away (drawn back along its shaft it would leap).
+TEST(SurgicalSession, AnInstrumentTheHeartBeatsIntoRidesOnItsSurface) {
+  SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
+  ASSERT_TRUE(s.scene.heart.playback.beating);
+  physics::Executor exec(1);
+  SessionInput in;
+  in.right.source = surgery::PoseSource::tool;
+  in.right.pose = s.stations[1].pose;
+  const Vec3 start = s.stations[1].pose.translation;
+  // Beside the vessel, towards the heart and into it.
+  const Vec3 target = s.scene.layout.ima_midpoint +
+                      Real(0.8) * (s.scene.layout.heart_centre - s.scene.layout.ima_midpoint);
+  Real largest_step = 0, largest_heart_step = 0, farthest = 0;
+  int pushed = 0;
+  Vec3 hinge = start;
+  for (int n = 1; n <= 60 + 2 * 160; ++n) {
+    in.right.pose.translation = start + (target - start) * std::min(1.0, n / 60.0);
+    // The instruments move first in a step, the heart after them (step_session).
+    tissue::HeartField heart_then = s.scene.heart;
+    const std::vector<Vec3> heart_before = s.scene.heart.current;
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+    const Vec3 now = s.stations[1].pose.translation;
+    if (n > 60) {
+      largest_step = std::max(largest_step, (now - hinge).norm());
+      for (std::size_t v = 0; v < heart_before.size(); ++v)
+        largest_heart_step =
+            std::max(largest_heart_step, (s.scene.heart.current[v] - heart_before[v]).norm());
+      // The instrument's point nearest the heart (the hinge, the electrode's middle or its tip).
+      Real d = std::numeric_limits<Real>::max();
+      for (const Vec3& x : probe_points(s.stations[1], s.params.cautery.electrode_length))
+        d = std::min(d, tissue::heart_signed_distance(heart_then, x, 0.01));
+      EXPECT_GE(d, s.params.tool_clearance * (1 - 1e-6)) << n;
+      farthest = std::max(farthest, d);
+      pushed += s.stations[1].blocked_by_heart ? 1 : 0;
+    }
+    hinge = now;
+  }
+  EXPECT_GT(pushed, 20);  // the heart did move into it
+  // It rests on the surface throughout (the clearance is 0.5 mm) and moves with it: the heart's
+  // wall moves up to 0.3 mm a step, and sliding over its curve towards the commanded point adds
+  // a little. (Drawn back along its shaft it leapt 50 mm and stood 8 mm off.)
+  EXPECT_GT(largest_heart_step, 1e-4);
+  EXPECT_LT(farthest, 0.001);
+  EXPECT_LT(largest_step, 0.002);
+}
+
+// A hand that jumps to a pose beyond the heart (a tracker glitch, a clutch released far away):
+// the instrument goes as far as the heart lets it and no further, not through it.
+TEST(SurgicalSession, AnInstrumentDoesNotPassThroughTheHeart) {
+  scene::ThoraxSceneParams params = scene::default_thorax_scene_params();
+  params.playback.beating = false;
+  SurgicalSession s = make_surgical_session(params, SessionParams{});
+  physics::Executor exec(1);
+  SessionInput in;
+  in.right.source = surgery::PoseSource::tool;
+  in.right.pose = s.stations[1].pose;
+  const Vec3 start = s.stations[1].pose.translation;
+  const Vec3 centre = s.scene.layout.heart_centre;
+  in.right.pose.translation = centre + Real(0.5) * (centre - start);  // beyond the heart
+  for (int n = 0; n < 20; ++n) {
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+    const Vec3 hinge = s.stations[1].pose.translation;
+    EXPECT_GE(tissue::heart_signed_distance(s.scene.heart, hinge, 0.01),
+              s.params.tool_clearance * (1 - 1e-6));
+    // Still on the near side: nearer the start than the heart's centre is.
+    EXPECT_LT((hinge - start).norm(), (centre - start).norm()) << n;
+  }
+  EXPECT_TRUE(s.stations[1].blocked_by_heart);
 }
 
 TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "math/stopwatch.hpp"
+#include "session/surface_stops.hpp"
 #include "tissue/tissue_step.hpp"
 
 namespace imasim::session {
@@ -34,66 +35,6 @@ Mat3 frame_along(const Vec3& f) {
   return r;
 }
 
-// Points of the instrument that must stay out of the heart and the wall: the hinge and the tips.
-std::array<Vec3, 3> probe_points(const Station& s, Real electrode_length) {
-  const Pose& p = s.pose;
-  if (s.instrument.kind == surgery::InstrumentKind::forceps) {
-    return {p.translation,
-            surgery::jaw_tip(s.instrument, surgery::upper_jaw_pose(s.instrument, s.state)),
-            surgery::jaw_tip(s.instrument, surgery::lower_jaw_pose(s.instrument, s.state))};
-  }
-  const Vec3 tip = p.translation + electrode_length * p.rotation.col(2);
-  return {p.translation, Real(0.5) * (p.translation + tip), tip};
-}
-
-bool inside_cavity(const geometry::CylinderPatchSpec& wall, const Vec3& x, Real clearance) {
-  const Vec3 axis = wall.axis.normalized();
-  const Vec3 r = x - wall.origin;
-  return (r - r.dot(axis) * axis).norm() < wall.radius - clearance;
-}
-
-// Where a stopped instrument rests against the heart (if `heart`) or else the chest wall: its
-// probe point nearest that surface and the surface's outward normal there (the heart's from
-// central differences of its signed distance, the wall's towards the cavity's axis).
-SurfaceStop surface_stop(SurgicalSession& s, const Station& st, bool heart) {
-  SurfaceStop stop;
-  stop.tissue = heart ? Tissue::heart : Tissue::chest_wall;
-  const geometry::CylinderPatchSpec& wall = s.scene.layout.wall;
-  const Vec3 axis = wall.axis.normalized();
-  auto radial = [&](const Vec3& x) {
-    const Vec3 r = x - wall.origin;
-    return Vec3(r - r.dot(axis) * axis);
-  };
-  auto clearance = [&](const Vec3& x) {
-    return heart ? tissue::heart_signed_distance(s.scene.heart, x, Real(0.01))
-                 : wall.radius - radial(x).norm();
-  };
-  Real best = std::numeric_limits<Real>::max();
-  for (const Vec3& x : probe_points(st, s.params.cautery.electrode_length)) {
-    const Real c = clearance(x);
-    if (c < best) {
-      best = c;
-      stop.point = x;
-    }
-  }
-  Vec3 n = Vec3::Zero();
-  if (heart) {
-    constexpr Real e = Real(2e-4);  // (unit: m)
-    for (int k = 0; k < 3; ++k) {
-      const Vec3 step = e * Vec3::Unit(k);
-      n[k] = clearance(stop.point + step) - clearance(stop.point - step);
-    }
-  } else {
-    n = -radial(stop.point);
-  }
-  if (n.norm() > 0) stop.normal = n.normalized();
-  if (heart) {
-    stop.velocity = tissue::heart_surface_velocity(s.scene.heart, stop.point, Real(0.01),
-                                                   s.scene.patch.world.model.solver.dt);
-  }
-  return stop;
-}
-
 void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput& in) {
   st.previous_pose = st.pose;
   st.previous_controller = st.state.controller;
@@ -118,52 +59,7 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
                           st.state);
   st.pose = surgery::world_pose(st.instrument, st.state);
 
-  // The instrument stops at the heart's surface and the chest wall: if a probe point would be
-  // inside either, the hinge is drawn back along the shaft (bisection between the port's minimum
-  // insertion, which lies in the cavity, and the commanded hinge).
-  const Real clearance = s.params.tool_clearance, electrode = s.params.cautery.electrode_length;
-  auto blocked = [&](bool& heart, bool& wall) {
-    heart = wall = false;
-    for (const Vec3& x : probe_points(st, electrode)) {
-      heart = heart || tissue::heart_signed_distance(s.scene.heart, x, Real(0.01)) < clearance;
-      wall = wall || !inside_cavity(s.scene.layout.wall, x, clearance);
-    }
-    return heart || wall;
-  };
-  bool heart = false, wall = false;
-  st.blocked_by_heart = st.blocked_by_wall = false;
-  st.stop = SurfaceStop{};
-  if (!blocked(heart, wall)) return;
-  st.blocked_by_heart = heart;
-  st.blocked_by_wall = wall;
-  // It stops where it was (a motion into the surface is refused) ...
-  const Pose commanded = st.state.controller;
-  st.state.controller = st.previous_controller;
-  st.pose = surgery::world_pose(st.instrument, st.state);
-  if (!blocked(heart, wall)) {
-    st.arm_state.tool = st.state.controller;
-    st.stop = surface_stop(s, st, heart);
-    return;
-  }
-  // ... unless the heart moved into it: then it gives way along its shaft, as far as the heart
-  // needs (the wall, around the port, does not count here: near the port every insertion is
-  // close to it, and counting it would draw the instrument back to the port).
-  st.state.controller = commanded;
-  const Vec3 port = st.arm.port, hinge = st.state.controller.translation;
-  const Vec3 axis = (hinge - port).normalized();
-  Real safe = st.arm.min_insertion, unsafe = (hinge - port).norm();
-  for (int k = 0; k < 30; ++k) {
-    const Real mid = Real(0.5) * (safe + unsafe);
-    st.state.controller.translation = port + mid * axis;
-    st.pose = surgery::world_pose(st.instrument, st.state);
-    bool h = false, w = false;
-    blocked(h, w);
-    ((heart ? h : w) ? unsafe : safe) = mid;
-  }
-  st.state.controller.translation = port + safe * axis;
-  st.arm_state.tool = st.state.controller;
-  st.pose = surgery::world_pose(st.instrument, st.state);
-  st.stop = surface_stop(s, st, heart);
+  stop_at_surfaces(s, st);
 }
 
 void build_geometry(SurgicalSession& s, Station& st, bool holding) {

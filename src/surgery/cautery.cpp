@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry/closest_point.hpp"
@@ -32,6 +33,8 @@ void validate(const CauteryParams& p) {
   require(p.coag_heat_fraction >= 0 && p.coag_heat_fraction <= 1, "coag_heat_fraction in [0, 1]");
   require(p.specific_heat > 0, "specific_heat must be > 0");
   require(p.density > 0, "density must be > 0");
+  require(p.thermal_diffusivity >= 0 && std::isfinite(p.thermal_diffusivity),
+          "thermal_diffusivity must be >= 0");
   require(p.coagulation_rise > 0 && p.injury_rise > 0, "temperature rises must be > 0");
   require(p.coagulated_compliance_factor > 0 && p.coagulated_compliance_factor <= 1,
           "coagulated_compliance_factor in (0, 1]");
@@ -59,6 +62,21 @@ CauteryState make_cautery_state(tissue::TissueWorld& w, const CauteryParams& par
   s.reached.reserve(n);
   s.weight.reserve(n);
   return s;
+}
+
+Real cooling_time(const CauteryParams& p) {
+  const Real sigma = p.spread_radius / 2;
+  if (p.thermal_diffusivity <= 0) return std::numeric_limits<Real>::infinity();
+  return sigma * sigma / (4 * p.thermal_diffusivity);  // tau = sigma^2 / (4 alpha) (unit: s)
+}
+
+void cool_tissue(const CauteryParams& params, Real dt, CauteryState& s) {
+  if (s.dose == 0) return;  // never heated: nothing to cool
+  const Real keep = std::exp(-dt / cooling_time(params));
+  // Rises below this are gone (and stay out of the subnormal range, where arithmetic is slow).
+  constexpr Real kNegligible = Real(1e-9);  // (unit: K)
+  for (Real& rise : s.rise)
+    rise = rise * keep < kNegligible ? Real(0) : rise * keep;
 }
 
 CauteryStep apply_cautery(tissue::TissueWorld& w, const CauteryParams& params, PedalMode pedal,

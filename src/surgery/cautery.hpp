@@ -8,15 +8,15 @@
 //   q(r) = E exp(-(r / sigma)^2) / (pi sigma^2 (L + sqrt(pi) sigma))        (unit: J/m^3),
 // whose integral over space is E (the two end caps together make one 3D Gaussian), cut off at
 // `spread_radius`. The tissue there is a continuum that the particles sample: a particle at r
-// rises by q(r) / (rho c) (no cooling: the rise only grows). The rise so depends on the distance
-// alone, not on how many particles happen to lie near the electrode (the fat's strands sample
-// their tissue sparsely) nor on their masses, so it does not change with the mesh's resolution
-// or with a cut. A vertex a cut makes takes its parents' rise interpolated like its position
-// (inherit_cautery_state). Past the coagulation
-// rise the tissue is coagulated: its stretch constraints take a stiffer material (compliance
-// times `coagulated_compliance_factor`) and it is drawn in the coagulated colour. On the IMA, a
-// rise past `injury_rise` is a thermal injury. Cut mode's cutting itself (fascia and strands) is
-// the session's: it calls the cutters while this reports contact.
+// rises by q(r) / (rho c); between deposits the tissue cools by conduction (cool_tissue). The
+// rise so depends on the distance alone, not on how many particles happen to lie near the
+// electrode (the fat's strands sample their tissue sparsely) nor on their masses, so it does not
+// change with the mesh's resolution or with a cut. A vertex a cut makes takes its parents' rise
+// interpolated like its position (inherit_cautery_state). Past the coagulation rise the tissue is
+// coagulated: its stretch constraints take a stiffer material (compliance times
+// `coagulated_compliance_factor`) and it is drawn in the coagulated colour. On the IMA, a rise past
+// `injury_rise` is a thermal injury. Cut mode's cutting itself (fascia and strands) is the
+// session's: it calls the cutters while this reports contact.
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -36,8 +36,11 @@ struct CauteryParams {
   // Share of P dt that heats the tissue: cut mode vaporises a thin layer at the edge (most of
   // the energy leaves as steam), coagulation mode heats the surroundings.
   Real cut_heat_fraction = Real(0.2), coag_heat_fraction = Real(0.6);
-  Real specific_heat = 3500;   // c of soft tissue (unit: J/(kg K))
-  Real density = 1050;         // rho of soft tissue (unit: kg/m^3)
+  Real specific_heat = 3500;  // c of soft tissue (unit: J/(kg K))
+  Real density = 1050;        // rho of soft tissue (unit: kg/m^3)
+  // alpha = k / (rho c) of soft tissue (0.5 W/(m K)); it sets how fast a hot spot of the
+  // line source's width cools (cooling_time) (unit: m^2/s). 0: no cooling.
+  Real thermal_diffusivity = Real(1.4e-7);
   Real coagulation_rise = 23;  // 37 -> 60 degC coagulates (unit: K)
   Real injury_rise = 8;        // 37 -> 45 degC injures the IMA's wall (unit: K)
   Real coagulated_compliance_factor = Real(0.1);
@@ -73,6 +76,18 @@ struct CauteryStep {
   std::uint32_t injured = 0;     // IMA particles newly injured
   Real max_ima_rise = 0;         // largest temperature rise on the IMA (unit: K)
 };
+
+// Conduction spreads a Gaussian hot spot of width sigma: its peak falls as
+// sigma^2 / (sigma^2 + 4 alpha t), at first at the rate 4 alpha / sigma^2. A lumped model keeps
+// that rate: each particle's rise relaxes as d(rise)/dt = -rise / tau, tau = sigma^2 / (4 alpha)
+// (4.0 s at the defaults). It drops the heat conducted outwards instead of adding it to the
+// neighbours, which a point 2 mm from the electrode would see as up to a fifth more of its peak
+// rise, a second later; without it, passes 20 s apart would add up as if the tissue held every
+// joule for the whole session. Returns tau (unit: s), infinite without diffusivity.
+Real cooling_time(const CauteryParams& params);
+
+// One step of cooling: every rise times exp(-dt / tau). The flags (coagulated, injured) stay.
+void cool_tissue(const CauteryParams& params, Real dt, CauteryState& state);
 
 // One step with the electrode from a to b (world, unit: m).
 CauteryStep apply_cautery(tissue::TissueWorld& world, const CauteryParams& params, PedalMode pedal,
