@@ -180,7 +180,9 @@ TEST(HarvestPlan, KeepsFurtherFromABeatingHeartThanFromAStillOne) {
     }
     return sum / double(p.hook.size());
   };
-  EXPECT_GT(mean_height(beating), mean_height(still) + 5e-4);
+  // The dividing sweeps rise by the margin up to the wall's clearance (here 0.5 mm, the wall 4 mm
+  // over the vessel), about half of the plan.
+  EXPECT_GT(mean_height(beating), mean_height(still) + 2e-4);
 }
 
 TEST(ScriptedOperator, DrivesOnlyTheDeviceInterface) {
