@@ -29,6 +29,14 @@ SurgicalSession run_script(const surgery::InputScript& script, double seconds, i
   return s;
 }
 
+// An input that commands the hook by its tool pose, where it is now.
+SessionInput hook_held_where_it_is(const SurgicalSession& s) {
+  SessionInput in;
+  in.right.source = surgery::PoseSource::tool;
+  in.right.pose = s.stations[1].pose;
+  return in;
+}
+
 TEST(SurgicalSession, TheExampleScriptOpensGraspsCutsAndCoagulates) {
   const surgery::InputScript script = surgery::load_input_script(kScript);
   SurgicalSession s = run_script(script, script.end_time() + 0.2, 1);
@@ -89,9 +97,7 @@ TEST(SurgicalSession, InstrumentsStopAtTheHeart) {
   SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
   physics::Executor exec(1);
   // Command the hook's hinge to the heart's centre.
-  SessionInput in;
-  in.right.source = surgery::PoseSource::tool;
-  in.right.pose = s.stations[1].pose;
+  SessionInput in = hook_held_where_it_is(s);
   const Vec3 start = s.stations[1].pose.translation;
   const Vec3 centre = s.scene.layout.heart_centre;
   for (int n = 1; n <= 60; ++n) {
@@ -116,9 +122,7 @@ TEST(SurgicalSession, AnInstrumentTheHeartBeatsIntoRidesOnItsSurface) {
   SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
   ASSERT_TRUE(s.scene.heart.playback.beating);
   physics::Executor exec(1);
-  SessionInput in;
-  in.right.source = surgery::PoseSource::tool;
-  in.right.pose = s.stations[1].pose;
+  SessionInput in = hook_held_where_it_is(s);
   const Vec3 start = s.stations[1].pose.translation;
   // Beside the vessel, towards the heart and into it.
   const Vec3 target = s.scene.layout.ima_midpoint +
@@ -164,9 +168,7 @@ TEST(SurgicalSession, AnInstrumentDoesNotPassThroughTheHeart) {
   params.playback.beating = false;
   SurgicalSession s = make_surgical_session(params, SessionParams{});
   physics::Executor exec(1);
-  SessionInput in;
-  in.right.source = surgery::PoseSource::tool;
-  in.right.pose = s.stations[1].pose;
+  SessionInput in = hook_held_where_it_is(s);
   const Vec3 start = s.stations[1].pose.translation;
   const Vec3 centre = s.scene.layout.heart_centre;
   in.right.pose.translation = centre + Real(0.5) * (centre - start);  // beyond the heart
@@ -185,9 +187,7 @@ TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {
   SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
   physics::Executor exec(1);
   // The hook laid across the vessel: the electrode's middle on the centerline.
-  SessionInput in;
-  in.right.source = surgery::PoseSource::tool;
-  in.right.pose = s.stations[1].pose;
+  SessionInput in = hook_held_where_it_is(s);
   const Vec3 f = in.right.pose.rotation.col(2);
   in.right.pose.translation =
       s.scene.layout.ima_midpoint - 0.5 * s.params.cautery.electrode_length * f;
