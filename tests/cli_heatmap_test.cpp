@@ -38,10 +38,17 @@ std::pair<unsigned, unsigned> png_size(const std::string& path) {
   return {be32(16), be32(20)};
 }
 
-// One short recorded run shared by the tests (its files are inputs to the heatmap command).
+// The stem of one short recorded run per test: ctest runs these tests as parallel processes, and
+// a shared file would be read by one while another rewrites it.
+std::string run_stem() {
+  return kDir + "imasim_heatmap_run_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+}
+
+// The recorded run's trajectory (its files are inputs to the heatmap command).
 const std::string& recorded() {
   static const std::string csv = [] {
-    const std::string path = kDir + "imasim_heatmap_run.csv";
+    const std::string path = run_stem() + ".csv";
     const Finished r =
         run("run --headless --script " + kScript + " --seconds 1 --record " + path + " --json");
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -52,12 +59,12 @@ const std::string& recorded() {
 
 TEST(RecordedRunHeatMaps, TheRunWritesItsFrameAndOneHeatMapPerInstrument) {
   recorded();
-  const nlohmann::json side = nlohmann::json::parse(read_file(kDir + "imasim_heatmap_run.json"));
+  const nlohmann::json side = nlohmann::json::parse(read_file(run_stem() + ".json"));
   ASSERT_TRUE(side["run"].contains("heat_maps")) << side["run"].dump(1);
   const nlohmann::json& maps = side["run"]["heat_maps"];
-  EXPECT_EQ(maps["frame"], kDir + "imasim_heatmap_run.frame.json");
-  EXPECT_EQ(maps["forceps"], kDir + "imasim_heatmap_run.heatmap-forceps.png");
-  EXPECT_EQ(maps["hook"], kDir + "imasim_heatmap_run.heatmap-hook.png");
+  EXPECT_EQ(maps["frame"], run_stem() + ".frame.json");
+  EXPECT_EQ(maps["forceps"], run_stem() + ".heatmap-forceps.png");
+  EXPECT_EQ(maps["hook"], run_stem() + ".heatmap-hook.png");
   for (const char* tool : {"forceps", "hook"})
     EXPECT_EQ(png_size(maps[tool]), (std::pair<unsigned, unsigned>{1100, 700})) << tool;
   const nlohmann::json frame = nlohmann::json::parse(read_file(maps["frame"]));
@@ -69,8 +76,8 @@ TEST(RecordedRunHeatMaps, TheRunWritesItsFrameAndOneHeatMapPerInstrument) {
 TEST(HeatmapCommand, PoolsRecordingsIntoOnePicture) {
   const std::string csv = recorded(), out = kDir + "imasim_heatmap_pooled.png";
   const Finished r = run("heatmap --trajectory " + csv + " --trajectory " + csv +
-                         " --tool hook --frame " + kDir + "imasim_heatmap_run.frame.json --out " +
-                         out + " --title 'Hook, two runs' --width 900 --height 600 --json");
+                         " --tool hook --frame " + run_stem() + ".frame.json --out " + out +
+                         " --title 'Hook, two runs' --width 900 --height 600 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["samples"], 122);  // 61 rows each
@@ -80,7 +87,7 @@ TEST(HeatmapCommand, PoolsRecordingsIntoOnePicture) {
 }
 
 TEST(HeatmapCommand, BadFilesAreClearErrors) {
-  const std::string csv = recorded(), frame = kDir + "imasim_heatmap_run.frame.json";
+  const std::string csv = recorded(), frame = run_stem() + ".frame.json";
   const std::string bad_frame = kDir + "imasim_heatmap_bad_frame.json";
   std::string text = read_file(frame);
   text.replace(text.find("\"u\""), 3, "\"w\"");
