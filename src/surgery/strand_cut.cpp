@@ -55,7 +55,12 @@ std::uint32_t cut_strands(tissue::TissueWorld& w, const CutPlane& plane, Real om
       for (std::uint32_t k = 0; k < set.segments; ++k) {
         if (!segment_is_cut(plane, omega, x[set.particle(i, k)], x[set.particle(i, k + 1)]))
           continue;
-        w.state.constraints.distance.remove(set.segment_constraint[i * set.segments + k]);
+        // The whole strand lets go, not only the cut segment: it dissolves over the next steps
+        // (eq. 13) anyway, and the halves of a strand stretched by tissue that fell away (tens
+        // of millimetres a segment) would recoil at metres a second and stop the step at the
+        // speed guard.
+        for (std::uint32_t j = 0; j < set.segments; ++j)
+          w.state.constraints.distance.remove(set.segment_constraint[i * set.segments + j]);
         set.cut[i] = 1;
         cuts.push_back({s, i, k});
         ++count;

@@ -2,10 +2,11 @@
 // Cutting the connective-tissue strands (paper 2.4.2, eq. 10-13; SPEC S4). The tool's pose
 // gives the cutting plane through its position p with normal n (eq. 10) and the frame {n, l,
 // f} = R (0, 1, 0), R (1, 0, 0), R (0, 0, 1). A strand segment (eq. 11) is cut when it crosses
-// the plane inside the omega x omega square about p (eq. 12). A cut strand dissolves: its
-// particles' diameters shrink d <- 0.96 d each step (eq. 13) and the particles are removed once
-// d < 6e-4 m. A removed particle keeps its index (indices are handles elsewhere) but has no
-// mass, no constraint, no coupling and no XSPH neighbour, and is not drawn (diameter 0).
+// the plane inside the omega x omega square about p (eq. 12). A cut strand lets go at once (its
+// segments no longer pull) and dissolves: its particles' diameters shrink d <- 0.96 d each step
+// (eq. 13) and the particles are removed once d < 6e-4 m. A removed particle keeps its index
+// (indices are handles elsewhere) but has no mass, no constraint, no coupling and no XSPH
+// neighbour, and is not drawn (diameter 0).
 #include <cstdint>
 #include <vector>
 
@@ -34,8 +35,8 @@ struct StrandCut {
 };
 
 // Cuts every intact strand with a segment that eq. 12 selects at the current positions: the
-// segment's distance constraint is removed and the strand marked cut. Appends to `cuts`;
-// returns how many strands were cut.
+// strand's distance constraints (all its segments') are removed and the strand marked cut. Appends
+// to `cuts`; returns how many strands were cut.
 std::uint32_t cut_strands(tissue::TissueWorld& world, const CutPlane& plane, Real omega,
                           std::vector<StrandCut>& cuts);
 
