@@ -27,15 +27,10 @@ TEST(HarvestStudy, TheOperatorFinishesNineOfTenPerModeWithTheImaUninjured) {
   const nlohmann::json results = nlohmann::json::parse(read_file(out + "/results.json"));
   for (const std::string mode : {"dynamic", "static"}) {
     int finished = 0, uninjured = 0, trials = 0;
-    std::string stopped;
     for (const nlohmann::json& t : results["trials"]) {
       if (t["mode"] != mode) continue;
       ++trials;
-      // A run the step's guard stopped (or that failed) did not finish the task.
-      if (t["status"] != "ok") {
-        stopped += t.dump() + "\n";
-        continue;
-      }
+      ASSERT_EQ(t["status"], "ok") << t.dump();
       const nlohmann::json report =
           nlohmann::json::parse(read_file(t["files"]["report"].get<std::string>()));
       const nlohmann::json& op = report["operator"];
@@ -44,8 +39,8 @@ TEST(HarvestStudy, TheOperatorFinishesNineOfTenPerModeWithTheImaUninjured) {
       uninjured += op["ima_injuries"].get<int>() == 0 ? 1 : 0;
     }
     EXPECT_EQ(trials, 10);
-    EXPECT_GE(finished, 9) << mode << "; stopped:\n" << stopped;
-    EXPECT_GE(uninjured, 9) << mode << "; stopped:\n" << stopped;
+    EXPECT_GE(finished, 9) << mode;
+    EXPECT_GE(uninjured, 9) << mode;
   }
   const nlohmann::json& hook = results["sai"]["hook"];
   EXPECT_GT(hook["groups"]["dynamic"]["mean"].get<double>(),
