@@ -50,7 +50,7 @@ SANITIZE_CONFIGURE = cmake -S . -B $(ASAN_BUILD) -DCMAKE_CXX_COMPILER=clang++ \
 	  -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)
 unit-asan: deps
 	$(SANITIZE_CONFIGURE)
-	cmake --build $(ASAN_BUILD) -j $(JOBS) --target imasim_unit_tests imasim_fuzzers
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target imasim_unit_tests imasim_ui_tests imasim_fuzzers
 	cd $(ASAN_BUILD) && LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan.supp \
 	  ctest --output-on-failure -j $(JOBS) -L unit -E '$(ASAN_SKIP)'
 

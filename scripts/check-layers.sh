@@ -16,7 +16,9 @@ declare -A allowed=(
   [metrics]="metrics surgery tissue physics geometry math"
   [autopilot]="autopilot session scene surgery tissue physics geometry math devices haptics"
   [report]="report metrics surgery tissue physics geometry math"
+  [render]="render session scene surgery tissue physics geometry math"
   [console]="console session scene surgery tissue physics geometry math devices haptics metrics"
+  [ui]="ui render console session scene surgery tissue physics geometry math devices haptics metrics"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

@@ -13,6 +13,9 @@ packages=(
   libboost-math-dev  # the t distribution for the study statistics (issue 14)
   libcairo2-dev libsqlite3-dev  # heat maps and plots as PNG, trainee records (issue 14)
   chromium fonts-dejavu-core  # tests only: the study report loaded as a browser does (issue 14)
+  libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL 3.3 through EGL, Mesa's llvmpipe (issue 15)
+  libglfw3-dev libimgui-dev libstb-dev  # the window, its panels, PNG frames (issue 15)
+  xvfb xauth xdotool  # tests only: the window under a virtual display, real key presses (issue 15)
 )
 
 missing=()

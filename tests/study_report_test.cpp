@@ -122,8 +122,13 @@ TEST(StudyReport, ThePageShowsTable1TheTestsAndTheEmbeddedHeatMaps) {
   trials.back().heat_maps.clear();
   StudyInfo info = table1_info();
   info.trials_per_mode = 11;
+  for (TrialResult& t : trials)
+    t.views = {{"start", png}, {"end", png}};
   const StudySummary s = summarize_study(info.modes, trials);
   const std::string page = study_report_html(info, trials, s, {{"A plot", png}});
+  // The representative trials' scenes, drawn offscreen, are shown with their heat maps.
+  EXPECT_NE(page.find("the scene after the harvest (drawn offscreen)"), std::string::npos);
+  EXPECT_NE(page.find("the scene before (drawn offscreen)"), std::string::npos);
 
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   // The failed trial is left out of the means: Table 1's values stand.
@@ -137,9 +142,10 @@ TEST(StudyReport, ThePageShowsTable1TheTestsAndTheEmbeddedHeatMaps) {
   EXPECT_NE(page.find("statistically significant at the 5 % level"), std::string::npos);
   EXPECT_NE(page.find("not a model of surgeons"), std::string::npos);
   EXPECT_NE(page.find("timed out after 20 s of wall-clock time (killed)"), std::string::npos);
-  // Representative trials' heat maps (2 groups x 2 instruments) and the extra figure, embedded.
+  // Representative trials' heat maps (2 groups x 2 instruments), their scenes (2 x 2) and the
+  // extra figure, embedded.
   const std::string data = "src=\"data:image/png;base64," + base64(slurp(png)) + "\"";
-  EXPECT_EQ(count_of(page, data), 5u);
+  EXPECT_EQ(count_of(page, data), 9u);
   EXPECT_NE(page.find("dynamic, trial 7: hook (SAI 0.592)"), std::string::npos);
   EXPECT_NE(page.find("static, trial 1: hook (SAI 0.247)"), std::string::npos);
   // Self-contained: nothing fetched.
@@ -249,8 +255,16 @@ TEST(TrialScores, ASideFilesScoresReadBack) {
   EXPECT_TRUE(t.metrics[0].higher_is_better);
   EXPECT_EQ(t.metrics[0].value, 2);
   EXPECT_EQ(t.heat_maps.at("hook"), "/abs/hook.png");
+  EXPECT_TRUE(t.views.empty()) << "a recording made without OpenGL has no pictures";
+  side["run"]["views"] = {{"start", "/abs/start.png"}, {"end", "/abs/end.png"}};
+  read_trial_scores(side.dump(), "dir/static-01.json", t);
+  EXPECT_EQ(t.views.at("end"), "/abs/end.png");
+  EXPECT_EQ(t.views.size(), 2u);
 
   nlohmann::json broken = side;
+  broken["run"]["views"]["end"] = 3;
+  EXPECT_THROW(read_trial_scores(broken.dump(), "x.json", t), StudyDataError);
+  broken = side;
   broken["run"]["scores"]["sai"]["hook"].erase("samples");
   try {
     read_trial_scores(broken.dump(), "dir/static-01.json", t);

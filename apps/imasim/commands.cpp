@@ -17,6 +17,8 @@ Commands add_commands(CLI::App& app) {
   c.history = add_history_command(app);
   c.experiment = add_experiment_command(app);
   c.demo = add_demo_command(app);
+  c.render = add_render_command(app);
+  c.window = add_window_command(app);
   return c;
 }
 
@@ -33,6 +35,8 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("history")) return run_history_command(*c.history);
   if (app.got_subcommand("experiment")) return run_experiment_command(*c.experiment);
   if (app.got_subcommand("demo")) return run_demo_command(*c.demo);
+  if (app.got_subcommand("render")) return run_render_command(*c.render);
+  if (app.got_subcommand("window")) return run_window_command(*c.window);
   return 0;
 }
 

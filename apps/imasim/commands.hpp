@@ -12,10 +12,12 @@
 #include "haptics_bench_command.hpp"
 #include "heatmap_command.hpp"
 #include "history_command.hpp"
+#include "render_command.hpp"
 #include "run_command.hpp"
 #include "sai_command.hpp"
 #include "scene_command.hpp"
 #include "stats_command.hpp"
+#include "window_command.hpp"
 
 namespace imasim::cli {
 
@@ -32,6 +34,8 @@ struct Commands {
   std::shared_ptr<HistoryOptions> history;
   std::shared_ptr<ExperimentOptions> experiment;
   std::shared_ptr<DemoOptions> demo;
+  std::shared_ptr<RenderOptions> render;
+  std::shared_ptr<WindowCommandOptions> window;
 };
 
 // Registers every subcommand on `app` (one is required).

@@ -26,21 +26,6 @@ namespace imasim::cli {
 
 namespace {
 
-// Starts `imasim device-emulator` (this very program) calling port `port`; its summary is not
-// imasim run's report: stdout to /dev/null, errors to ours.
-pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
-                     double seconds, bool loop) {
-  std::vector<std::string> args = {
-      "device-emulator",      "--script", script, "--port", std::to_string(port), "--seconds",
-      std::to_string(seconds)};
-  if (loop) args.push_back("--loop");
-  if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
-  int error = 0;
-  const pid_t pid = spawn_self(args, "/dev/null", "", error);
-  if (pid < 0) throw std::runtime_error("cannot start the device emulator");
-  return pid;
-}
-
 nlohmann::ordered_json loop_report(const haptics::HapticLoopStats& s) {
   nlohmann::ordered_json j;
   j["ticks"] = s.ticks;
@@ -56,9 +41,9 @@ nlohmann::ordered_json loop_report(const haptics::HapticLoopStats& s) {
 
 }  // namespace
 
-LiveInputs::LiveInputs(const LiveInputOptions& o) {
+std::vector<std::unique_ptr<devices::InputDevice>> make_live_devices(const LiveInputOptions& o,
+                                                                     std::uint16_t& port) {
   std::vector<std::unique_ptr<devices::InputDevice>> list;
-  std::uint16_t port = 0;
   if (o.devices == "openigtlink" || o.devices == "emulator") {
     devices::IgtlDeviceConfig config = console::igtl_device_config(o.settings);
     config.link.role =
@@ -101,6 +86,25 @@ LiveInputs::LiveInputs(const LiveInputOptions& o) {
   if (o.pedal)
     list.push_back(
         std::make_unique<devices::JoystickPedalDevice>(console::pedal_mapping(o.settings)));
+  return list;
+}
+
+pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
+                     double seconds, bool loop) {
+  std::vector<std::string> args = {
+      "device-emulator",      "--script", script, "--port", std::to_string(port), "--seconds",
+      std::to_string(seconds)};
+  if (loop) args.push_back("--loop");
+  if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
+  int error = 0;
+  const pid_t pid = spawn_self(args, "/dev/null", "", error);
+  if (pid < 0) throw std::runtime_error("cannot start the device emulator");
+  return pid;
+}
+
+LiveInputs::LiveInputs(const LiveInputOptions& o) {
+  std::uint16_t port = 0;
+  std::vector<std::unique_ptr<devices::InputDevice>> list = make_live_devices(o, port);
   console::LiveConsoleParams params = console::live_console_params(o.settings);
   if (!o.realtime_priority) params.loop.realtime_priority = 0;
   owned_ = std::make_unique<console::LiveConsole>(std::move(list), params);

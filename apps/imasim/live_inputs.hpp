@@ -39,6 +39,18 @@ struct LiveInputOptions {
   bool realtime_priority = true;
 };
 
+// The devices a live input starts (the hands' device, then the pedals with `pedal`), for
+// LiveInputs and for the window (which adds the keyboard); `port` receives the OpenIGTLink
+// link's port (for the emulator), unchanged without a link. Throws std::runtime_error with a
+// message for the user.
+std::vector<std::unique_ptr<devices::InputDevice>> make_live_devices(const LiveInputOptions& o,
+                                                                     std::uint16_t& port);
+
+// Starts `imasim device-emulator` (this very program) playing `script` to `port`; its summary
+// goes to /dev/null. Throws std::runtime_error when it cannot start.
+pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
+                     double seconds, bool loop);
+
 class LiveInputs {
  public:
   // Starts the link (and the emulator); throws std::runtime_error with a message for the user.

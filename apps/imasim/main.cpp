@@ -2,14 +2,26 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <vector>
 
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
   const imasim::cli::Commands commands = imasim::cli::add_commands(app);
+  // No subcommand: the window on the default scene where there is a display, else how to run
+  // headless (issue 15).
+  std::vector<char*> args(argv, argv + argc);
+  char window[] = "window";
+  if (argc == 1) {
+    if (!imasim::cli::display_available()) {
+      imasim::cli::print_headless_hint(std::cerr);
+      return 2;
+    }
+    args.push_back(window);
+  }
   try {
-    app.parse(argc, argv);
+    app.parse(static_cast<int>(args.size()), args.data());
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {  // e.g. out of memory while parsing the arguments

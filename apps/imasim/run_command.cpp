@@ -1,4 +1,5 @@
 #include "run_command.hpp"
+#include "command_inputs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -71,7 +72,7 @@ constexpr std::uint64_t kMaxPatientSeed = 9'000'000'000'000'000'000u;
 std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run the thorax scene (beating heart, tissues)");
-  cmd->add_flag("--headless", opt->headless, "Run without a window (the only mode so far)");
+  cmd->add_flag("--headless", opt->headless, "Run without a window (see `imasim window`)");
   cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the built-in scene")
       ->check(non_empty());
   opt->seconds_option =
@@ -161,19 +162,11 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
 
 int run_run_command(const RunOptions& o) {
   if (!o.headless) {
-    std::cerr << "imasim run: the interactive window is not built yet; use --headless\n";
+    std::cerr << "imasim run: needs --headless (the window is `imasim window`)\n";
     return 2;
   }
-  scene::ThoraxSceneParams params = scene::default_thorax_scene_params();
-  if (!o.scene_file.empty()) {
-    try {
-      params = scene::load_scene_file(o.scene_file);
-    } catch (const scene::SceneFileError& e) {
-      for (const std::string& m : e.messages())
-        std::cerr << m << '\n';
-      return 2;
-    }
-  }
+  scene::ThoraxSceneParams params;
+  if (!load_scene_params(o.scene_file, params)) return 2;
   // The command line overrides the file where given.
   if (o.static_heart) params.playback.beating = false;
   if (o.heart_rate_bpm > 0) params.playback.heart_rate_bpm = Real(o.heart_rate_bpm);
@@ -188,12 +181,10 @@ int run_run_command(const RunOptions& o) {
     return 2;
   }
   std::optional<surgery::InputScript> script;
-  if (!o.script_file.empty()) {
+  if (!load_script(o.script_file, script)) return 2;
+  if (script && o.repeat > 1) {
     try {
-      script = surgery::load_input_script(o.script_file);
-      if (o.repeat > 1) {
-        script = surgery::repeat_input_script(*script, o.repeat, script->end_time() + 0.5);
-      }
+      script = surgery::repeat_input_script(*script, o.repeat, script->end_time() + 0.5);
     } catch (const surgery::InputScriptError& e) {
       std::cerr << e.what() << '\n';
       return 2;

@@ -5,8 +5,10 @@
 #include "metrics/heat_map.hpp"
 #include "metrics/trainee_metrics.hpp"
 #include "score_report.hpp"
+#include "session_view.hpp"
 
 #include <cstdio>
+#include <filesystem>
 
 namespace imasim::cli {
 
@@ -45,15 +47,11 @@ std::string RunRecording::heat_map_path_of(const std::string& csv, std::string_v
   return stem_of(csv) + ".heatmap-" + std::string(tool) + ".png";
 }
 
-namespace {
-
-// The heart at its static phase (the paper's 70 % reference): its side of the IMA.
-geometry::TriangleMesh static_heart(const session::SurgicalSession& s) {
-  geometry::TriangleMesh m;
-  m.vertices = s.scene.heart.reference;
-  m.triangles = s.scene.heart.model.topology.triangles;
-  return m;
+std::string RunRecording::view_path_of(const std::string& csv, std::string_view when) {
+  return stem_of(csv) + ".view-" + std::string(when) + ".png";
 }
+
+namespace {
 
 std::string number(double v) {
   char text[32];
@@ -89,7 +87,8 @@ RunRecording::RunRecording(const std::string& csv_path, std::span<const std::str
                            const nlohmann::ordered_json& run, const session::SurgicalSession& s,
                            Real ima_radius, const std::map<std::string, double>& thresholds)
     : trajectory_(metrics::OutputFile(csv_path, "the trajectory file", inputs)),
-      side_(metrics::make_side_reference(s.scene.layout.ima_centerline, static_heart(s))),
+      side_(metrics::make_side_reference(s.scene.layout.ima_centerline,
+                                         session::static_heart_mesh(s))),
       frame_(console::heat_map_frame_of(s)),
       csv_path_(csv_path),
       ima_radius_(ima_radius),
@@ -104,8 +103,25 @@ RunRecording::RunRecording(const std::string& csv_path, std::span<const std::str
   run_["heat_maps"] = {{"frame", frame_path_of(csv_path)}};
   write_side(run_);
   write_centerline(centerline_path_of(csv_path), inputs_, side_.centerline);
-  write_obj(heart_path_of(csv_path), inputs_, static_heart(s));
+  write_obj(heart_path_of(csv_path), inputs_, session::static_heart_mesh(s));
   metrics::write_heat_map_frame(frame_, frame_path_of(csv_path), inputs_);
+  draw_view(s, "start");
+}
+
+void RunRecording::draw_view(const session::SurgicalSession& s, std::string_view when) {
+  if (!views_problem_.empty()) return;  // no OpenGL here: said once
+  const std::string path = view_path_of(csv_path_, when);
+  for (const std::string& input : inputs_)
+    if (std::filesystem::weakly_canonical(input) == std::filesystem::weakly_canonical(path)) {
+      views_problem_ = "the picture " + path + " would overwrite an input";
+      return;
+    }
+  try {
+    draw_session_view(s, path);
+    views_[std::string(when)] = path;
+  } catch (const std::exception& e) {
+    views_problem_ = e.what();  // the recording matters more than its pictures
+  }
 }
 
 nlohmann::ordered_json RunRecording::draw_heat_maps(const nlohmann::ordered_json& sai) {
@@ -192,6 +208,9 @@ nlohmann::ordered_json RunRecording::finish(const nlohmann::ordered_json& ending
   run["rows"] = trajectory_.rows();
   run["scores"] = scores;
   run["heat_maps"] = draw_heat_maps(sai);
+  draw_view(s, "end");
+  run["views"] = views_;
+  if (!views_problem_.empty()) run["views_problem"] = views_problem_;
   write_side(run);
   finished_run_ = run;
   return scores;

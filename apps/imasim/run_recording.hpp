@@ -8,6 +8,9 @@
 // scores each instrument's tips by eq. 20 itself. Heat maps as in Fig. 13: the frame they project
 // onto (FILE.frame.json, at the start) and, at the end, each instrument's tips drawn on it
 // (FILE.heatmap-forceps.png, FILE.heatmap-hook.png), named in the side file under "heat_maps".
+// Pictures of the scene drawn offscreen at the start and at the end (FILE.view-start.png,
+// FILE.view-end.png), named under "views"; a machine without OpenGL gets "views_problem" instead,
+// and the recording goes on.
 #include <map>
 #include <nlohmann/json.hpp>
 #include <span>
@@ -59,10 +62,13 @@ class RunRecording {
   static std::string frame_path_of(const std::string& csv_path);
   // FILE.heatmap-TOOL.png
   static std::string heat_map_path_of(const std::string& csv_path, std::string_view tool);
+  // FILE.view-WHEN.png
+  static std::string view_path_of(const std::string& csv_path, std::string_view when);
 
  private:
   void write_side(const nlohmann::ordered_json& run);
   nlohmann::ordered_json draw_heat_maps(const nlohmann::ordered_json& sai);
+  void draw_view(const session::SurgicalSession& session, std::string_view when);
 
   metrics::TrajectoryRecorder trajectory_;
   metrics::SideReference side_;
@@ -76,6 +82,8 @@ class RunRecording {
   std::vector<std::string> inputs_;
   nlohmann::ordered_json run_;
   nlohmann::ordered_json finished_run_;  // run_ with the ending and the scores
+  nlohmann::ordered_json views_ = nlohmann::ordered_json::object();  // when -> PNG file
+  std::string views_problem_;
   metrics::SessionRecord scored_;
 };
 

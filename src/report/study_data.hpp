@@ -47,6 +47,7 @@ struct TrialResult {
   std::map<std::string, SaiValue> sai;           // by instrument
   std::vector<MetricValue> metrics;              // in the run's order
   std::map<std::string, std::string> heat_maps;  // by instrument: a PNG file
+  std::map<std::string, std::string> views;      // the scene drawn: "start", "end" -> PNG file
 };
 
 struct StudyInfo {

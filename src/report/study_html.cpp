@@ -201,7 +201,9 @@ std::string study_report_html(const StudyInfo& info, const std::vector<TrialResu
        html::sai_table(info, trials, summary) + html::tests_table(summary) + "</section>";
   h += "<section id=\"heat-maps\"><h2>Representative heat maps</h2><p>Tool-tip positions "
        "projected onto the plane of the chest wall, coloured by density, as the paper's Fig. 13; "
-       "each group is shown by its trial whose hook SAI is nearest the group's mean.</p>" +
+       "each group is shown by its trial whose hook SAI is nearest the group's mean, with that "
+       "trial's "
+       "scene drawn at its start and at its end.</p>" +
        html::heat_maps(trials, summary) + "</section>";
   if (!images.empty() || !tables.empty()) {
     h += "<section id=\"history\"><h2>Trainee history</h2>";

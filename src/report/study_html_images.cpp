@@ -55,6 +55,16 @@ std::string heat_maps(const std::vector<TrialResult>& trials, const StudySummary
       h += figure(t->heat_maps.at(tool), caption);
     }
     h += "</div>";
+    if (!t->views.empty()) {
+      h += "<div class=\"figures\">";
+      for (const auto& [when, png] :
+           {std::pair<const char*, const char*>{"start", "before"}, {"end", "after the harvest"}}) {
+        if (!t->views.contains(when)) continue;
+        h += figure(t->views.at(when), g.mode + ", trial " + std::to_string(t->trial) +
+                                           ": the scene " + png + " (drawn offscreen)");
+      }
+      h += "</div>";
+    }
   }
   return h;
 }

@@ -102,6 +102,16 @@ void read_trial_scores(const std::string& body, const std::string& path, TrialRe
       trial.heat_maps[it.key()] = image_path(it->get<std::string>(), path);
     }
   }
+  // Pictures of the scene (optional: a machine without OpenGL records without them).
+  trial.views.clear();
+  if (run.contains("views")) {
+    const Json& views = run.at("views");
+    if (!views.is_object()) fail(path, "run.views", "not an object of moment to PNG file");
+    for (auto it = views.begin(); it != views.end(); ++it) {
+      if (!it->is_string()) fail(path, "run.views." + it.key(), "not a file name");
+      trial.views[it.key()] = image_path(it->get<std::string>(), path);
+    }
+  }
 }
 
 }  // namespace imasim::report

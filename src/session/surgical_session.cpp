@@ -112,6 +112,13 @@ Tissue tissue_of_particle(const SurgicalSession& s, std::uint32_t particle) {
   return object < s.object_tissue.size() ? s.object_tissue[object] : Tissue::none;
 }
 
+geometry::TriangleMesh static_heart_mesh(const SurgicalSession& s) {
+  geometry::TriangleMesh m;
+  m.vertices = s.scene.heart.reference;
+  m.triangles = s.scene.heart.model.topology.triangles;
+  return m;
+}
+
 std::array<Vec3, 2> electrode(const SurgicalSession& s) {
   const Pose& p = s.stations[1].pose;
   return {p.translation, p.translation + s.params.cautery.electrode_length * p.rotation.col(2)};

@@ -120,4 +120,8 @@ SessionInput sample_script(const surgery::InputScript& script, double t);
 // The cautery electrode's ends (world): from the hinge along f for the electrode's length.
 std::array<Vec3, 2> electrode(const SurgicalSession& session);
 
+// The heart at its static phase (the paper's 70 % reference), which eq. 20 takes as the heart's
+// side of the IMA.
+geometry::TriangleMesh static_heart_mesh(const SurgicalSession& session);
+
 }  // namespace imasim::session

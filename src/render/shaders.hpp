@@ -1,0 +1,116 @@
+#pragma once
+// GLSL 3.30 core sources of the renderer. Lighting is in camera space: the endoscope carries
+// its own light, so the light sits at the eye (a headlight), as in a real scope.
+namespace imasim::render::shaders {
+
+// Shared lighting: Blinn-Phong with a narrow, strong highlight and a Fresnel rim (wet tissue
+// reflects the scope's light sharply at grazing angles), coagulation browning, the cautery glow.
+inline constexpr const char* kLighting = R"(
+uniform vec3 u_colour;
+uniform float u_specular;
+uniform float u_shininess;
+uniform int u_key;            // 1: flat key colour, unlit
+uniform vec3 u_glow_position; // camera space
+uniform float u_glow;
+vec3 shade_colour(vec3 p, vec3 n, float coagulation) {
+  if (u_key == 1) return u_colour;
+  float distance2 = dot(p, p);
+  float inv_distance = inversesqrt(distance2);
+  vec3 v = -p * inv_distance;
+  float facing = dot(n, v);
+  facing = abs(facing);  // membranes are seen from both sides
+  // The scope's light falls off with distance (its working range is a few centimetres).
+  float light = 1.0 / (1.0 + 40.0 * distance2);
+  vec3 base = mix(u_colour, vec3(0.42, 0.31, 0.22), 0.75 * coagulation);
+  float wet = u_specular * (1.0 - 0.8 * coagulation);
+  // With the light at the eye the half vector is v: the highlight is pow(n.v, shininess).
+  float highlight = exp2(u_shininess * log2(max(facing, 1e-4)));
+  float grazing = 1.0 - facing;
+  float grazing2 = grazing * grazing;
+  float fresnel = grazing2 * grazing2 * grazing;
+  vec3 colour = base * (0.18 + 0.9 * facing * light) + vec3(wet * highlight * light)
+                + 0.08 * fresnel * vec3(1.0, 0.9, 0.9);
+  if (u_glow > 0.0) {
+    vec3 to_glow = u_glow_position - p;
+    float d2 = dot(to_glow, to_glow);
+    float lit = max(dot(n, to_glow) * inversesqrt(max(d2, 1e-12)), 0.0);
+    colour += u_glow * vec3(1.0, 0.55, 0.15) * (0.2 + lit) / (1.0 + d2 / 2.5e-5);
+  }
+  return clamp(colour, 0.0, 1.0);
+}
+)";
+
+inline constexpr const char* kSurfaceVertex = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in float a_shade;
+uniform mat4 u_view;
+uniform mat4 u_projection;
+out vec3 v_position;
+out vec3 v_normal;
+out float v_shade;
+void main() {
+  vec4 p = u_view * vec4(a_position, 1.0);
+  v_position = p.xyz;
+  v_normal = mat3(u_view) * a_normal;
+  v_shade = a_shade;
+  gl_Position = u_projection * p;
+}
+)";
+
+inline constexpr const char* kSurfaceFragmentMain = R"(
+in vec3 v_position;
+in vec3 v_normal;
+in float v_shade;
+out vec4 o_colour;
+void main() {
+  vec3 n = length(v_normal) > 0.0 ? normalize(v_normal) : vec3(0.0, 0.0, 1.0);
+  o_colour = vec4(shade_colour(v_position, n, v_shade), 1.0);
+}
+)";
+
+// Spheres as impostors: a camera-facing square per sphere in the plane of its centre, the sphere
+// ray-cast in the fragment shader for its outline and its normal. The square's depth stands for
+// the whole sphere (the fat's spheres are under a millimetre across): writing each fragment's
+// true depth turns off the rasteriser's early depth test, and cost llvmpipe a quarter of the
+// frame (docs/PERFORMANCE.md). Instanced icosahedra were slower still: 20 triangles a sphere cost
+// more in set-up than the impostors' fragments.
+inline constexpr const char* kSphereVertex = R"(#version 330 core
+layout(location = 0) in vec2 a_corner;
+layout(location = 1) in vec3 a_centre;
+layout(location = 2) in float a_radius;
+uniform mat4 u_view;
+uniform mat4 u_projection;
+out vec3 v_position;
+flat out vec3 v_centre;
+flat out float v_radius;
+void main() {
+  vec4 c = u_view * vec4(a_centre, 1.0);
+  // The outline of a sphere of radius r at distance d, seen in its centre's plane, has radius
+  // r d / sqrt(d^2 - r^2): the square's 1.1 r holds it down to d = 2.4 r.
+  vec3 p = c.xyz + vec3(a_corner * a_radius * 1.1, 0.0);
+  v_position = p;
+  v_centre = c.xyz;
+  v_radius = a_radius;
+  gl_Position = u_projection * vec4(p, 1.0);
+}
+)";
+
+inline constexpr const char* kSphereFragmentMain = R"(
+in vec3 v_position;
+flat in vec3 v_centre;
+flat in float v_radius;
+out vec4 o_colour;
+void main() {
+  vec3 d = normalize(v_position);
+  float b = dot(d, v_centre);
+  float disc = b * b - dot(v_centre, v_centre) + v_radius * v_radius;
+  if (disc < 0.0) discard;
+  float t = b - sqrt(disc);
+  if (t <= 0.0) discard;
+  vec3 hit = t * d;
+  o_colour = vec4(shade_colour(hit, (hit - v_centre) / v_radius, 0.0), 1.0);
+}
+)";
+
+}  // namespace imasim::render::shaders
