@@ -21,7 +21,12 @@ namespace {
 using imasim::test::kHeatHigh;
 using imasim::test::kHeatLow;
 
-const std::string kDir = ::testing::TempDir() + "imasim_browser/";
+// One folder per test: ctest runs the tests as parallel processes, and two Chromiums on one
+// profile refuse to start (its SingletonLock), as two writers of one report would collide.
+std::string test_dir() {
+  return ::testing::TempDir() + "imasim_browser_" +
+         ::testing::UnitTest::GetInstance()->current_test_info()->name() + "/";
+}
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -36,19 +41,20 @@ int chromium(const std::string& args, const std::string& out, const std::string&
   const std::string command =
       "timeout 120 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars "
       "--force-device-scale-factor=1 --user-data-dir=" +
-      kDir + "profile --enable-logging=stderr --v=0 --virtual-time-budget=5000 " + args + " >" +
-      out + " 2>" + err;
+      test_dir() + "profile --enable-logging=stderr --v=0 --virtual-time-budget=5000 " + args +
+      " >" + out + " 2>" + err;
   return std::system(command.c_str());
 }
 
 std::string write_report() {
-  std::filesystem::create_directories(kDir);
-  const std::string png = kDir + "heat_map.png";
+  const std::string dir = test_dir();
+  std::filesystem::create_directories(dir);
+  const std::string png = dir + "heat_map.png";
   imasim::test::write_heat_map_png(png);
   const std::vector<imasim::report::TrialResult> trials = imasim::test::table1_trials(png);
   const imasim::report::StudyInfo info = imasim::test::table1_info();
   const imasim::report::StudySummary summary = imasim::report::summarize_study(info.modes, trials);
-  return imasim::report::write_study_files(kDir, info, trials, summary).report_html;
+  return imasim::report::write_study_files(dir, info, trials, summary).report_html;
 }
 
 bool near(const unsigned char* rgb, const unsigned char* want) {
@@ -59,23 +65,24 @@ bool near(const unsigned char* rgb, const unsigned char* want) {
 
 TEST(BrowserReport, LoadsWithoutConsoleMessagesAndMarksItselfReady) {
   const std::string page = write_report();
-  ASSERT_EQ(chromium("--dump-dom file://" + page, kDir + "dom.html", kDir + "dom.err"), 0)
-      << slurp(kDir + "dom.err");
-  const std::string dom = slurp(kDir + "dom.html");
+  ASSERT_EQ(chromium("--dump-dom file://" + page, test_dir() + "dom.html", test_dir() + "dom.err"),
+            0)
+      << slurp(test_dir() + "dom.err");
+  const std::string dom = slurp(test_dir() + "dom.html");
   EXPECT_NE(dom.find("data-ready=\"yes\""), std::string::npos) << dom.substr(0, 400);
   EXPECT_NE(dom.find("0.589 ± 0.030"), std::string::npos);
-  const std::string log = slurp(kDir + "dom.err");
+  const std::string log = slurp(test_dir() + "dom.err");
   EXPECT_EQ(log.find(":CONSOLE"), std::string::npos) << log;
 }
 
 TEST(BrowserReport, TheScreenshotShowsTheHeatMaps) {
   const std::string page = write_report();
-  const std::string shot = kDir + "report.png";
+  const std::string shot = test_dir() + "report.png";
   std::remove(shot.c_str());
   ASSERT_EQ(chromium("--window-size=1280,7000 --screenshot=" + shot + " file://" + page,
-                     kDir + "shot.out", kDir + "shot.err"),
+                     test_dir() + "shot.out", test_dir() + "shot.err"),
             0)
-      << slurp(kDir + "shot.err");
+      << slurp(test_dir() + "shot.err");
   cairo_surface_t* image = cairo_image_surface_create_from_png(shot.c_str());
   ASSERT_EQ(cairo_surface_status(image), CAIRO_STATUS_SUCCESS) << shot;
   const int w = cairo_image_surface_get_width(image), h = cairo_image_surface_get_height(image);
