@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace imasim::test {
@@ -25,6 +26,19 @@ inline std::string read_file(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// Width and height from a PNG's header (IHDR), or {0, 0} when the file is no PNG.
+inline std::pair<unsigned, unsigned> png_size(const std::string& path) {
+  const std::string b = read_file(path);
+  if (b.size() < 24 || b.compare(1, 3, "PNG") != 0 || b.compare(12, 4, "IHDR") != 0) return {0, 0};
+  auto be32 = [&](std::size_t at) {
+    unsigned v = 0;
+    for (std::size_t k = 0; k < 4; ++k)
+      v = (v << 8) | static_cast<unsigned char>(b[at + k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
 }
 
 inline std::vector<std::string> lines_of(const std::string& text) {

@@ -11,6 +11,7 @@
 namespace {
 
 using imasim::test::Finished;
+using imasim::test::png_size;
 using imasim::test::read_file;
 
 const std::string kDir = ::testing::TempDir();
@@ -22,18 +23,6 @@ const std::string kScript = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fas
 Finished run(const std::string& args) {
   return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
                                  err_file());
-}
-
-std::pair<unsigned, unsigned> png_size(const std::string& path) {
-  const std::string b = read_file(path);
-  if (b.size() < 24 || b.compare(1, 3, "PNG") != 0 || b.compare(12, 4, "IHDR") != 0) return {0, 0};
-  auto be32 = [&](std::size_t at) {
-    unsigned v = 0;
-    for (std::size_t k = 0; k < 4; ++k)
-      v = (v << 8) | static_cast<unsigned char>(b[at + k]);
-    return v;
-  };
-  return {be32(16), be32(20)};
 }
 
 TEST(RenderCommand, WritesTheFramesOfTheScriptedSession) {
@@ -77,6 +66,9 @@ TEST(RenderCommand, BadRequestsAreClearErrors) {
   r = run("render --frames 0 --out " + kDir + "imasim_render_x");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+  r = run("render --frames 1 --fps nan --out " + kDir + "imasim_render_x");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--fps"), std::string::npos) << r.err;
   r = run("render --frames 1 --stereo sideways --out " + kDir + "imasim_render_x");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("--stereo"), std::string::npos) << r.err;

@@ -135,7 +135,7 @@ TEST(OffscreenRender, EachTissueAppearsWhereItsGeometryProjects) {
     EXPECT_GE(v.matching, int(0.95 * v.visible))
         << v.matching << " of " << v.visible << " visible points show the tissue's colour";
   }
-  // A check that can fail: with the heart's key colour swapped out, its points do not match.
+  // The heart is a large part of this view, not a few stray pixels.
   int heart_pixels = 0;
   for (std::size_t i = 0; i < rgb.size(); i += 3)
     heart_pixels += rgb[i] == 0 && rgb[i + 1] == 0 && rgb[i + 2] == 255;

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cli_checks.hpp"
 #include "command_inputs.hpp"
 #include "physics/executor.hpp"
 #include "render/camera.hpp"
@@ -36,7 +37,8 @@ std::shared_ptr<RenderOptions> add_render_command(CLI::App& app) {
   cmd->add_option("--out", opt->out_dir, "Directory for frame_0000.png ...")->required();
   cmd->add_option("--width", opt->width, "Image width (pixels)")->check(CLI::Range(16, 8192));
   cmd->add_option("--height", opt->height, "Image height (pixels)")->check(CLI::Range(16, 8192));
-  cmd->add_option("--fps", opt->fps, "Frames per simulated second")->check(CLI::Range(1.0, 200.0));
+  cmd->add_option("--fps", opt->fps, "Frames per simulated second")
+      ->check(finite_range(1.0, 200.0));
   cmd->add_option("--camera", opt->camera, "endoscope (the camera port's scope) or orbit")
       ->check(CLI::IsMember({"endoscope", "orbit"}));
   cmd->add_option("--stereo", opt->stereo, "none, side-by-side or anaglyph")
