@@ -173,9 +173,10 @@ void SimThread::finish_session(const char* why) {
     std::lock_guard<std::mutex> lock(card_mutex_);
     card_ = score_->score_card(*session_);
   }
-  card_generation_.fetch_add(1);
   note(why);
   publish(true);
+  // Last: finished() turns true only once the final numbers and frame are out.
+  card_generation_.fetch_add(1);
 }
 
 void SimThread::step_once() {
