@@ -1,6 +1,6 @@
 // The renderer on Mesa's software rasteriser (llvmpipe, no GPU), offscreen at the window's size:
 // the frame copied from the session, drawn and finished (glFinish: the rasteriser's threads
-// done), per mode. Frames per second = 1000 / ms.
+// done), per mode, from the default orbit camera or the endoscope's. Frames per second = 1000 / ms.
 #include <benchmark/benchmark.h>
 #include <epoxy/gl.h>
 
@@ -67,7 +67,9 @@ void BM_RenderFrame(benchmark::State& state) {
   render::frame_of_session(session, frame);
   const float aspect =
       float(width) / float(height) / (mode == render::StereoMode::side_by_side ? 2.0f : 1.0f);
-  const render::Camera camera = render::orbit_camera(render::default_orbit(frame), aspect);
+  const render::Camera camera = state.range(4) != 0
+                                    ? render::endoscope_camera(frame, aspect)
+                                    : render::orbit_camera(render::default_orbit(frame), aspect);
   for (auto _ : state) {
     render::frame_of_session(session, frame);
     context.bind();
@@ -79,11 +81,12 @@ void BM_RenderFrame(benchmark::State& state) {
   if (physics) state.counters["late_steps"] = double(physics->late_steps());
 }
 BENCHMARK(BM_RenderFrame)
-    ->ArgNames({"w", "h", "stereo", "physics"})
-    ->Args({1280, 720, 0, 0})
-    ->Args({1280, 720, 1, 0})
-    ->Args({1280, 720, 2, 0})
-    ->Args({1280, 720, 0, 1})
+    ->ArgNames({"w", "h", "stereo", "physics", "endoscope"})
+    ->Args({1280, 720, 0, 0, 0})
+    ->Args({1280, 720, 1, 0, 0})
+    ->Args({1280, 720, 2, 0, 0})
+    ->Args({1280, 720, 0, 1, 0})
+    ->Args({1280, 720, 0, 0, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "devices/gamepad_device.hpp"
+#include "virtual_joystick.hpp"
 
 namespace imasim::devices {
 namespace {
@@ -63,25 +64,15 @@ TEST(GamepadMapping, TriggersButtonsAndPedal) {
 }
 
 TEST(GamepadDevice, AVirtualControllerThroughSdlDrivesTheHands) {
-  SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
-  ASSERT_EQ(SDL_InitSubSystem(SDL_INIT_GAMECONTROLLER), 0) << SDL_GetError();
-  SDL_VirtualJoystickDesc desc{};
-  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-  desc.type = SDL_JOYSTICK_TYPE_GAMECONTROLLER;
-  desc.naxes = SDL_CONTROLLER_AXIS_MAX;
-  desc.nbuttons = SDL_CONTROLLER_BUTTON_MAX;
-  desc.name = "imasim test pad";
-  const int index = SDL_JoystickAttachVirtualEx(&desc);
-  ASSERT_GE(index, 0) << SDL_GetError();
-  SDL_Joystick* stick = SDL_JoystickOpen(index);
-  ASSERT_NE(stick, nullptr);
+  test::VirtualJoystick stick("imasim test pad", true);
+  ASSERT_TRUE(stick.attached()) << SDL_GetError();
   {
     GamepadDevice pad;
     ASSERT_TRUE(pad.connected());
     EXPECT_EQ(pad.info().name, "imasim test pad");
-    SDL_JoystickSetVirtualAxis(stick, SDL_CONTROLLER_AXIS_LEFTX, 32767);
-    SDL_JoystickSetVirtualAxis(stick, SDL_CONTROLLER_AXIS_TRIGGERRIGHT, 32767);
-    SDL_JoystickSetVirtualButton(stick, SDL_CONTROLLER_BUTTON_A, 1);
+    stick.set_axis(SDL_CONTROLLER_AXIS_LEFTX, 32767);
+    stick.set_axis(SDL_CONTROLLER_AXIS_TRIGGERRIGHT, 32767);
+    stick.set_button(SDL_CONTROLLER_BUTTON_A, true);
     ConsoleInput in;
     for (int k = 0; k <= 50; ++k)
       pad.poll(k * 0.01, in);  // 0.5 s
@@ -90,8 +81,7 @@ TEST(GamepadDevice, AVirtualControllerThroughSdlDrivesTheHands) {
     EXPECT_EQ(in.pedal, haptics::CauteryMode::cut);
     pad.send_force(Hand::left, Vec3(1, 0, 0), 1.0);  // a rumble; a virtual pad ignores it
     // Unplugged: no longer connected, the hands stay where they were.
-    SDL_JoystickClose(stick);
-    SDL_JoystickDetachVirtual(index);
+    stick.unplug();
     const Vec3 left = in.left.pose.translation;
     pad.poll(0.6, in);
     EXPECT_FALSE(pad.connected());
@@ -99,7 +89,6 @@ TEST(GamepadDevice, AVirtualControllerThroughSdlDrivesTheHands) {
     EXPECT_EQ(in.pedal, haptics::CauteryMode::off);  // no energy without the pad
     EXPECT_EQ(in.left.velocity, Vec3::Zero());
   }
-  SDL_QuitSubSystem(SDL_INIT_GAMECONTROLLER);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <array>
 
 #include "devices/joystick_pedal_device.hpp"
+#include "virtual_joystick.hpp"
 
 namespace imasim::devices {
 namespace {
@@ -59,17 +60,9 @@ TEST(PedalMapping, JoystickNames) {
 }
 
 TEST(JoystickPedalDevice, AVirtualFootSwitchThroughSdlPressesThePedals) {
-  SDL_SetHint(SDL_HINT_JOYSTICK_ALLOW_BACKGROUND_EVENTS, "1");
-  ASSERT_EQ(SDL_InitSubSystem(SDL_INIT_JOYSTICK), 0) << SDL_GetError();
-  SDL_VirtualJoystickDesc desc{};
-  desc.version = SDL_VIRTUAL_JOYSTICK_DESC_VERSION;
-  desc.type = SDL_JOYSTICK_TYPE_UNKNOWN;  // a plain HID joystick, as foot switches are
-  desc.nbuttons = 3;
-  desc.name = "imasim test foot switch";
-  const int index = SDL_JoystickAttachVirtualEx(&desc);
-  ASSERT_GE(index, 0) << SDL_GetError();
-  SDL_Joystick* stick = SDL_JoystickOpen(index);
-  ASSERT_NE(stick, nullptr);
+  // A plain HID joystick, as foot switches are.
+  test::VirtualJoystick stick("imasim test foot switch", false, 3);
+  ASSERT_TRUE(stick.attached()) << SDL_GetError();
   {
     PedalMapping m;
     m.joystick = "Foot Switch";  // any part of the name, any case
@@ -78,15 +71,14 @@ TEST(JoystickPedalDevice, AVirtualFootSwitchThroughSdlPressesThePedals) {
     EXPECT_EQ(pedal.info().name, "imasim test foot switch");
     EXPECT_TRUE(pedal.info().drives_pedal);
     ConsoleInput in;
-    SDL_JoystickSetVirtualButton(stick, 1, 1);
+    stick.set_button(1, true);
     pedal.poll(0.0, in);
     EXPECT_EQ(in.pedal, haptics::CauteryMode::coag);
-    SDL_JoystickSetVirtualButton(stick, 2, 1);
+    stick.set_button(2, true);
     pedal.poll(0.001, in);
     EXPECT_TRUE(in.left.clutch && in.right.clutch);
     // Pulled out with a foot on the pedals: no energy, no clutch.
-    SDL_JoystickClose(stick);
-    SDL_JoystickDetachVirtual(index);
+    stick.unplug();
     pedal.poll(0.002, in);
     EXPECT_FALSE(pedal.connected());
     EXPECT_EQ(in.pedal, haptics::CauteryMode::off);
@@ -98,7 +90,6 @@ TEST(JoystickPedalDevice, AVirtualFootSwitchThroughSdlPressesThePedals) {
     const JoystickPedalDevice absent(m);
     EXPECT_FALSE(absent.connected());
   }
-  SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // The window under Xvfb (issue 15): `imasim window` opens, plays the example script for two
 // seconds of simulated time, saves a screenshot that is the size asked for and not blank, and
-// quits with no OpenGL error; Escape, pressed through the window's key handler, quits it; with
-// no display or a bad scene it says so and exits 2. Skipped only where xvfb-run is missing.
+// quits with no OpenGL error; Escape, pressed through the window's key handler, quits it; two
+// emulated haptic devices drive it over OpenIGTLink; with no display or a bad scene it says so
+// and exits 2. Skipped only where xvfb-run is missing.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -98,6 +99,23 @@ TEST(WindowSmoke, SideBySideStereoDrawsWithoutErrors) {
                                 "/examples/open_fascia.script --seconds 0.3 --stereo side-by-side");
   ASSERT_EQ(f.exit_code, 0) << f.out << f.err;
   EXPECT_EQ(nlohmann::json::parse(f.out)["gl_errors"], 0) << f.err;
+}
+
+// The window with two emulated haptic devices (`imasim device-emulator`, a child process playing
+// the example script) over OpenIGTLink on loopback: the 1 kHz loop runs beside the window and
+// renders a force, and the devices' hands do the script's work (strands cut).
+TEST(WindowSmoke, EmulatedHapticDevicesDriveTheInstrumentsOverOpenIgtLink) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run not found (apt install xvfb xauth)";
+  const Finished f = run_window("--devices emulator --script " + kSource +
+                                "/examples/open_fascia.script --seconds 3");
+  ASSERT_EQ(f.exit_code, 0) << f.out << f.err;
+  const nlohmann::json report = nlohmann::json::parse(f.out);
+  EXPECT_EQ(report["input"], "emulator");
+  EXPECT_EQ(report["gl_errors"], 0);
+  ASSERT_TRUE(report.contains("haptic_loop")) << f.out;
+  EXPECT_GT(report["haptic_loop"]["ticks"].get<double>(), 1000) << "the loop ran for seconds";
+  EXPECT_GT(report["haptic_loop"]["force_max_n"].get<double>(), 0) << "a contact pushed back";
+  EXPECT_GT(report["score"]["strands_cut"].get<int>(), 0) << "the hook cut, driven by a device";
 }
 
 // Real X key events (xdotool, when installed): F8 records, L moves the right hand (the hook)

@@ -133,6 +133,7 @@ int run_window_command(const WindowCommandOptions& o) {
     print_headless_hint(std::cerr);
     return 2;
   }
+  ui::spread_software_rasteriser_threads();  // first: no thread of ours runs yet
   ui::SimConfig config;
   std::optional<surgery::InputScript> script;
   if (!load_scene_params(o.scene_file, config.scene) || !load_script(o.script_file, script))

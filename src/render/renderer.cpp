@@ -9,6 +9,7 @@
 #include "render/gl_program.hpp"
 #include "render/look_style.hpp"
 #include "render/shaders.hpp"
+#include "render/sphere_order.hpp"
 
 namespace imasim::render {
 
@@ -55,6 +56,7 @@ struct Renderer::Gl {
   std::vector<SurfaceBuffers> surfaces;
   std::vector<std::pair<float, std::size_t>> order;  // surfaces by distance, nearest first
   GLuint sphere_vao = 0, sphere_corner = 0, sphere_centre = 0, sphere_radius = 0;
+  SphereOrder sphere_order;  // the fat nearest first (sphere_order.hpp)
 
   Gl() {
     glGenVertexArrays(1, &sphere_vao);
@@ -195,13 +197,14 @@ void Renderer::draw(const RenderFrame& frame, const Camera& camera, const Viewpo
   if (frame.fat.count() > 0) {
     gl_->set_common(gl_->sphere, frame, camera, mode);
     gl_->set_look(gl_->sphere, frame.fat.look, mode);
+    gl_->sphere_order.sort(frame.fat, camera.eye);
     glBindVertexArray(gl_->sphere_vao);
     glBindBuffer(GL_ARRAY_BUFFER, gl_->sphere_centre);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(frame.fat.centres.size() * sizeof(float)),
-                 frame.fat.centres.data(), GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(gl_->sphere_order.centres().size() * sizeof(float)),
+                 gl_->sphere_order.centres().data(), GL_STREAM_DRAW);
     glBindBuffer(GL_ARRAY_BUFFER, gl_->sphere_radius);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(frame.fat.radii.size() * sizeof(float)),
-                 frame.fat.radii.data(), GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(gl_->sphere_order.radii().size() * sizeof(float)),
+                 gl_->sphere_order.radii().data(), GL_STREAM_DRAW);
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(frame.fat.count()));
   }
   glDisable(GL_CULL_FACE);

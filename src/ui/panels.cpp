@@ -26,11 +26,14 @@ const char* pedal_name(surgery::PedalMode m) {
 bool begin_column_panel(const char* title, float x, float& y, float height) {
   ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(float(kPanelWidth), height), ImGuiCond_Always);
-  ImGui::SetNextWindowBgAlpha(0.85f);
   y += height + kGap;
+  // No background of their own: the column is cleared to the panels' colour before the frame
+  // (window_app.cpp). ImGui blends a textured background over the whole column otherwise, and on
+  // Mesa's software rasteriser that cost about a tenth of the window's frame (docs/PERFORMANCE.md).
   return ImGui::Begin(title, nullptr,
                       ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                          ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+                          ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings |
+                          ImGuiWindowFlags_NoBackground);
 }
 
 void button(const char* label, Command command, std::vector<Command>& clicked) {

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
+#include <string>
 #include <thread>
 
 #include "render/image_file.hpp"
@@ -386,6 +387,11 @@ WindowReport App::run() {
 }
 
 }  // namespace
+
+void spread_software_rasteriser_threads() {
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  ::setenv("LP_NUM_THREADS", std::to_string(cores + 1).c_str(), 0);
+}
 
 WindowReport run_window(const WindowOptions& options, SimThread& sim,
                         KeyboardMouseDevice* keyboard) {

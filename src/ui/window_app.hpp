@@ -45,6 +45,13 @@ class WindowError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Call before any thread starts (setenv is not thread-safe). Mesa's software rasteriser,
+// llvmpipe, starts one rasterising thread per core; beside them the physics thread keeps part of
+// a core busy, and the thread that shares its core finishes its tiles last while the frame waits.
+// One thread more than the cores spreads the tiles so that the others take up the slack
+// (docs/PERFORMANCE.md). Leaves a LP_NUM_THREADS the user set alone; a GPU's driver ignores it.
+void spread_software_rasteriser_threads();
+
 // Opens the window, starts `sim` and runs until the window is closed, Escape is pressed or (with
 // quit_when_finished) the session ends; stops `sim`. `keyboard` (may be null) receives the
 // console's keys and the mouse drags. Throws WindowError, before starting `sim`, when no window
