@@ -22,8 +22,7 @@ std::string err_file() {
 const std::string kScript = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fascia.script";
 
 Finished run(const std::string& args) {
-  return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
-                                 err_file());
+  return imasim::test::run_imasim(args, err_file());
 }
 
 // The stem of one short recorded run per test: ctest runs these tests as parallel processes, and

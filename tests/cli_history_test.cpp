@@ -26,10 +26,8 @@ const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
 
 // `env` first: the variables a test sets (XDG_DATA_HOME, USER) and none of the user's data home.
 Finished run(const std::string& args, const std::string& env = "") {
-  const std::string err = err_file();
-  return imasim::test::run_shell("env XDG_DATA_HOME=" + kDir + "unused_data_home " + env + " " +
-                                     std::string(IMASIM_EXE) + " " + args + " 2>" + err,
-                                 err);
+  return imasim::test::run_imasim(args, err_file(),
+                                  "env XDG_DATA_HOME=" + kDir + "unused_data_home " + env);
 }
 
 std::string fresh(const std::string& name) {

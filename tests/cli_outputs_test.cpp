@@ -27,8 +27,7 @@ std::string err_file() {
 
 // Runs `prefix imasim args`.
 Finished run(const std::string& args, const std::string& prefix = "") {
-  return run_shell(prefix + " " + std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
-                   err_file());
+  return imasim::test::run_imasim(args, err_file(), prefix);
 }
 
 // Runs `imasim args`, and sends SIGTERM as soon as its stderr holds `text` (or after

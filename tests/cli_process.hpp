@@ -71,4 +71,13 @@ inline Finished run_shell(const std::string& command, const std::string& err_pat
   return f;
 }
 
+#ifdef IMASIM_EXE
+// `imasim ARGS` (after `prefix`, an `env ...` say), its standard error kept in `err_path`.
+inline Finished run_imasim(const std::string& args, const std::string& err_path,
+                           const std::string& prefix = "") {
+  return run_shell(prefix + " " + std::string(IMASIM_EXE) + " " + args + " 2>" + err_path,
+                   err_path);
+}
+#endif
+
 }  // namespace imasim::test

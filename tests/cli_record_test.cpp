@@ -29,9 +29,7 @@ const std::string kScript = IMASIM_SOURCE_DIR "/examples/open_fascia.script";
 const std::string kDataHome = kDir + "imasim_record_data_home";
 
 Finished run(const std::string& args, const std::string& prefix = "") {
-  return imasim::test::run_shell(prefix + " env XDG_DATA_HOME=" + kDataHome + " " +
-                                     std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
-                                 err_file());
+  return imasim::test::run_imasim(args, err_file(), prefix + " env XDG_DATA_HOME=" + kDataHome);
 }
 
 std::size_t field_count(const std::string& line) {

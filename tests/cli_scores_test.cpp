@@ -23,8 +23,7 @@ std::string err_file() {
 }
 
 Finished run(const std::string& args) {
-  return imasim::test::run_shell(std::string(IMASIM_EXE) + " " + args + " 2>" + err_file(),
-                                 err_file());
+  return imasim::test::run_imasim(args, err_file());
 }
 
 // In the order printed (an ordered parse: nlohmann::json would sort them).
