@@ -91,10 +91,17 @@ void predict(const Model& model, State& state, const SubstepPlan& plan, const Ex
                          const ObjectParams& object = model.objects[o];
                          const Real h = plan.h(object);
                          const Vec3 dv = h * object.gravity;
+                         // Raw pointers: a store through one vector could otherwise alias the
+                         // others' data pointers, reloaded every particle.
+                         const Real* w = P.inverse_mass.data();
+                         const ObjectId* owner = P.object.data();
+                         const Vec3* x = P.position.data();
+                         Vec3* v = P.velocity.data();
+                         Vec3* p = P.predicted.data();
                          for (std::size_t i = begin; i < end; ++i) {
-                           if (P.inverse_mass[i] == 0 || P.object[i] != o) continue;
-                           P.velocity[i] += dv;
-                           P.predicted[i] = P.position[i] + h * P.velocity[i];
+                           if (w[i] == 0 || owner[i] != o) continue;
+                           v[i] += dv;
+                           p[i] = x[i] + h * v[i];
                          }
                        });
 }
@@ -219,13 +226,18 @@ std::uint32_t update_velocities(const Model& model, State& state, const SubstepP
                          const Real inverse_h = 1 / plan.h(object);
                          const Real keep = state.scratch.object_keep[o];
                          std::uint32_t bad = kInvalidIndex;
+                         const Real* w = P.inverse_mass.data();  // raw pointers: see predict()
+                         const ObjectId* owner = P.object.data();
+                         const Vec3* p = P.predicted.data();
+                         Vec3* x = P.position.data();
+                         Vec3* velocity = P.velocity.data();
                          for (std::size_t i = begin; i < end; ++i) {
-                           if (P.inverse_mass[i] == 0 || P.object[i] != o) continue;
-                           const Vec3 v = (P.predicted[i] - P.position[i]) * inverse_h;
+                           if (w[i] == 0 || owner[i] != o) continue;
+                           const Vec3 v = (p[i] - x[i]) * inverse_h;
                            if (!v.allFinite() && bad == kInvalidIndex)
                              bad = static_cast<std::uint32_t>(i);
-                           P.velocity[i] = keep * v;
-                           P.position[i] = P.predicted[i];
+                           velocity[i] = keep * v;
+                           x[i] = p[i];
                          }
                          first_bad[c] = bad;
                        });

@@ -15,6 +15,9 @@ namespace {
 // millimetre: a 2 mm search (kHeartStepSearch) over a 5 mm grid suffices.
 constexpr Real kColliderCell = Real(0.005);
 
+// Below 1 by far more than the rounding of a closest point (see nearest_per_component).
+constexpr Real kBoxSlack = Real(1) - Real(1e-9);
+
 void refresh_collider(HeartField& h) {
   const auto& tris = h.model.topology.triangles;
   geometry::compute_vertex_normals(h.current, tris, h.normals);
@@ -149,6 +152,11 @@ void nearest_per_component(HeartField& h, const Vec3& p, Real search) {
       geometry::Box(p - Vec3::Constant(search), p + Vec3::Constant(search)), h.visited, h.stamp,
       [&](std::uint32_t t) {
         HeartField::Nearest& best = h.nearest[h.triangle_component[t]];
+        // A triangle's distance is at least its box's: skip the closest-point computation for
+        // triangles whose box is beyond the search or the component's best so far. The slack
+        // keeps the skip conservative under rounding, so the answer is the same.
+        const Real box2 = h.boxes[t].squaredExteriorDistance(p) * kBoxSlack;
+        if (box2 > search * search || box2 > best.distance2) return;
         const auto& tri = tris[t];
         const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
             p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
