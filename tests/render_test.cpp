@@ -6,6 +6,8 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include "physics/executor.hpp"
 #include "render/camera.hpp"
@@ -222,6 +224,67 @@ TEST(OffscreenRender, CoagulatedTissueIsDrawnDarker) {
   for (std::size_t i = 0; i < before.size(); ++i)
     sum_before += before[i], sum_after += after[i];
   EXPECT_LT(double(sum_after), 0.97 * double(sum_before));
+}
+
+namespace {
+
+// A lone fat sphere 5 cm from the eye, its centre in the direction (tan_x, tan_y, -1) of the
+// camera: the pixels drawn in its key colour against the pixels whose centre's ray meets it.
+struct SphereCoverage {
+  int drawn = 0, expected = 0, drawn_not_expected = 0;
+};
+
+SphereCoverage lone_sphere_coverage(float tan_x, float tan_y) {
+  Fixture& f = fixture();
+  f.context.bind();
+  Camera camera;
+  camera.projection = orbit_camera(OrbitCamera{}, float(kWidth) / kHeight).projection;
+  for (int k = 0; k < 4; ++k)
+    camera.view[std::size_t(5 * k)] = 1;  // the eye at the origin, looking along -z
+  const float radius = 0.003f, distance = 0.05f;
+  const float norm = std::sqrt(tan_x * tan_x + tan_y * tan_y + 1);
+  const std::array<float, 3> c{distance * tan_x / norm, distance * tan_y / norm, -distance / norm};
+  RenderFrame frame;
+  frame.fat.centres.assign(c.begin(), c.end());
+  frame.fat.radii = {radius};
+  f.renderer.draw(frame, camera, {0, 0, kWidth, kHeight}, DrawMode::look_colours);
+  const std::vector<std::uint8_t> rgb = f.context.read_rgb();
+  SphereCoverage coverage;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      // The ray through the pixel's centre (y down from the top, as read_rgb gives rows).
+      const double dx = (2 * (x + 0.5) / kWidth - 1) / camera.projection[0];
+      const double dy = (1 - 2 * (y + 0.5) / kHeight) / camera.projection[5];
+      const double dn = std::sqrt(dx * dx + dy * dy + 1);
+      const double along = (dx * c[0] + dy * c[1] - c[2]) / dn;  // ray . centre
+      const double c2 = double(c[0]) * c[0] + double(c[1]) * c[1] + double(c[2]) * c[2];
+      const bool hit = along > 0 && c2 - along * along <= double(radius) * radius;
+      const bool drawn = pixel(rgb, x, y) == key_colour(Look::fat);
+      coverage.expected += hit;
+      coverage.drawn += drawn;
+      coverage.drawn_not_expected += drawn && !hit;
+    }
+  }
+  return coverage;
+}
+
+}  // namespace
+
+// The impostor's rectangle bounds the sphere's whole outline: off the view axis the outline is
+// an ellipse longer by about 1 / cos(angle), which a square sized for the axis cut off.
+TEST(OffscreenRender, ASphereImpostorCoversItsWholeOutlineOnAndOffTheAxis) {
+  const float half_width = 1 / orbit_camera(OrbitCamera{}, float(kWidth) / kHeight).projection[0];
+  const float half_height = std::tan(OrbitCamera{}.vertical_fov / 2);
+  for (const auto& [tx, ty] : {std::pair{0.0f, 0.0f}, std::pair{0.8f * half_width, 0.0f},
+                               std::pair{0.85f * half_width, -0.8f * half_height}}) {
+    SCOPED_TRACE("direction tan " + std::to_string(tx) + ", " + std::to_string(ty));
+    const SphereCoverage c = lone_sphere_coverage(tx, ty);
+    ASSERT_GT(c.expected, 200) << "the sphere should cover a few hundred pixels";
+    // The shader casts the same ray through each pixel's centre: only the float rounding of a
+    // pixel right on the outline may differ. (A square of 1.1 radii lost 4-5 % off the axis.)
+    EXPECT_NEAR(c.drawn, c.expected, 0.01 * c.expected);
+    EXPECT_LE(c.drawn_not_expected, int(0.01 * c.expected));
+  }
 }
 
 TEST(Stereo, APointAtTheConvergenceDistanceCoincidesInBothEyes) {

@@ -75,12 +75,18 @@ void main() {
 }
 )";
 
-// Spheres as impostors: a camera-facing square per sphere in the plane of its centre, the sphere
-// ray-cast in the fragment shader for its outline and its normal. The square's depth stands for
-// the whole sphere (the fat's spheres are under a millimetre across): writing each fragment's
-// true depth turns off the rasteriser's early depth test, and cost llvmpipe a quarter of the
-// frame (docs/PERFORMANCE.md). Instanced icosahedra were slower still: 20 triangles a sphere cost
-// more in set-up than the impostors' fragments.
+// Spheres as impostors: a rectangle per sphere in the camera-facing plane of its centre, the
+// sphere ray-cast in the fragment shader for its outline and its normal. The rectangle is the
+// exact bound of the sphere's outline in that plane: seen from the eye the outline is the cone
+// of half-angle a (sin a = r / d) about the centre's direction, which cuts the plane z = c.z in
+// an ellipse. Along the radial direction u (the centre's, off the view axis by t) it spans
+// |c.z| tan(t -+ a) from the axis; across it, |c.z| r / sqrt(c.z^2 - r^2). Near the axis that is
+// a square of half-side ~r; off it, the ellipse is longer by about 1 / cos t (1.4 at the corners
+// of a 0.9 rad view), which a square of fixed size would cut off. The rectangle's depth stands
+// for the whole sphere (the fat's spheres are under a millimetre across): writing each
+// fragment's true depth turns off the rasteriser's early depth test, and cost llvmpipe a quarter
+// of the frame (docs/PERFORMANCE.md). Instanced icosahedra were slower still: 20 triangles a
+// sphere cost more in set-up than the impostors' fragments.
 inline constexpr const char* kSphereVertex = R"(#version 330 core
 layout(location = 0) in vec2 a_corner;
 layout(location = 1) in vec3 a_centre;
@@ -91,13 +97,32 @@ out vec3 v_position;
 flat out vec3 v_centre;
 flat out float v_radius;
 void main() {
-  vec4 c = u_view * vec4(a_centre, 1.0);
-  // The outline of a sphere of radius r at distance d, seen in its centre's plane, has radius
-  // r d / sqrt(d^2 - r^2): the square's 1.1 r holds it down to d = 2.4 r.
-  vec3 p = c.xyz + vec3(a_corner * a_radius * 1.1, 0.0);
+  vec3 c = (u_view * vec4(a_centre, 1.0)).xyz;
+  float r = a_radius;
+  float depth = -c.z;  // in front of the eye when positive
+  float rho = length(c.xy);
+  vec2 u = rho > 1e-9 ? c.xy / rho : vec2(1.0, 0.0);
+  vec2 v = vec2(-u.y, u.x);
+  float tan_t = rho / max(depth, 1e-9);
+  float tan_a = r * inversesqrt(max(dot(c, c) - r * r, 1e-18));
+  float below = 1.0 - tan_t * tan_a;  // the cone's far side meets the plane while positive
+  vec2 half_size;
+  vec2 middle;
+  if (depth > r && below > 0.0) {
+    float far_side = depth * (tan_t + tan_a) / below;
+    float near_side = depth * (tan_t - tan_a) / (1.0 + tan_t * tan_a);
+    middle = 0.5 * (far_side + near_side) * u;
+    half_size = vec2(0.5 * (far_side - near_side), depth * r * inversesqrt(depth * depth - r * r));
+  } else {  // at the eye's plane: the outline is unbounded there, and the near plane clips it
+    middle = c.xy;
+    half_size = vec2(4.0 * r);
+  }
+  // 1 % beyond the exact outline, for the rasteriser's rounding.
+  vec2 offset = 1.01 * (a_corner.x * half_size.x * u + a_corner.y * half_size.y * v);
+  vec3 p = vec3(middle + offset, c.z);
   v_position = p;
-  v_centre = c.xyz;
-  v_radius = a_radius;
+  v_centre = c;
+  v_radius = r;
   gl_Position = u_projection * vec4(p, 1.0);
 }
 )";
