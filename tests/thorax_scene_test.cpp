@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "geometry/edge_adjacency.hpp"
 #include "physics/executor.hpp"
@@ -91,6 +93,34 @@ const tissue::HeartField::Anchor* anchor_of(const tissue::HeartField& h, std::ui
   for (const tissue::HeartField::Anchor& a : h.anchors)
     if (a.particle == i) return &a;
   return nullptr;
+}
+
+// Each anchored particle follows the heart vertex nearest its rest position (a scan of all of
+// them here), with the weight exp(-d / L) of that distance. Particles farther from the heart's
+// box than the first search box once took a nearer-looking vertex of the grid's border cells.
+TEST(ThoraxScene, EachAnchorFollowsTheNearestHeartVertex) {
+  const ThoraxScene s = make(false);
+  const tissue::HeartField& h = s.heart;
+  const physics::Particles& P = s.patch.world.state.particles;
+  ASSERT_GT(h.anchors.size(), 1000u);
+  int wrong = 0;
+  for (const tissue::HeartField::Anchor& a : h.anchors) {
+    const Vec3& x = P.rest_position[a.particle];
+    std::uint32_t nearest = 0;
+    Real nearest_d2 = std::numeric_limits<Real>::infinity();
+    for (std::uint32_t v = 0; v < h.reference.size(); ++v) {
+      const Real d2 = (h.reference[v] - x).squaredNorm();
+      if (d2 < nearest_d2) nearest_d2 = d2, nearest = v;
+    }
+    const Real chosen_d2 = (h.reference[a.heart_vertex] - x).squaredNorm();
+    if (chosen_d2 != nearest_d2 && wrong++ < 5) {
+      ADD_FAILURE() << "particle " << a.particle << ": heart vertex " << a.heart_vertex << " at "
+                    << std::sqrt(chosen_d2) << " m, vertex " << nearest << " at "
+                    << std::sqrt(nearest_d2) << " m";
+    }
+    EXPECT_NEAR(a.weight, std::exp(-std::sqrt(nearest_d2) / h.attenuation_length), 1e-12);
+  }
+  EXPECT_EQ(wrong, 0) << "anchors not at their nearest heart vertex";
 }
 
 TEST(ThoraxScene, VerticesCutIntoTheFasciasFixedPerimeterMoveWithTheHeart) {

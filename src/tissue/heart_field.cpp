@@ -83,17 +83,23 @@ void add_heart_anchors(HeartField& h, TissueWorld& world, const std::vector<std:
   h.anchors.reserve(h.anchors.size() + particles.size() + spare);
   h.anchor_of.resize(P.size(), HeartField::kNone);
   for (std::uint32_t i : particles) {
-    // Nearest heart vertex: search growing boxes until one is found.
+    // Nearest heart vertex: search growing boxes until one is found, then once more in the box
+    // that holds the ball through the one found. (The first find can be any vertex of the box:
+    // outside the grid's bounds the box is clamped to its border cells.)
     std::uint32_t best = 0;
     Real best_d2 = std::numeric_limits<Real>::infinity();
-    for (Real r = Real(0.01); !std::isfinite(best_d2); r *= 2) {
-      const Vec3& x = P.rest_position[i];
+    const Vec3& x = P.rest_position[i];
+    auto search = [&](Real r) {
       vertices.visit(geometry::Box(x - Vec3::Constant(r), x + Vec3::Constant(r)), visited, stamp,
                      [&](std::uint32_t v) {
                        const Real d2 = (h.reference[v] - x).squaredNorm();
                        if (d2 < best_d2 || (d2 == best_d2 && v < best)) best_d2 = d2, best = v;
                      });
-    }
+    };
+    Real r = Real(0.01);
+    for (; !std::isfinite(best_d2); r *= 2)
+      search(r);
+    if (std::sqrt(best_d2) > r / 2) search(std::sqrt(best_d2));
     h.anchor_of[i] = static_cast<std::uint32_t>(h.anchors.size());
     h.anchors.push_back({i, best, std::exp(-std::sqrt(best_d2) / h.attenuation_length)});
   }
