@@ -47,8 +47,10 @@ TEST(SceneFile, KeysNotGivenKeepTheirDefaults) {
   EXPECT_EQ(p.patch.fascia.nx, default_thorax_scene_params().patch.fascia.nx);
   const ThoraxSceneParams q = parse_scene(
       "[anatomy]\nsternum_position_m = [-0.03, 0.001, 0.002]\npatient_seed = 12\n"
-      "[ima_fat]\nseed = 7\n",
+      "[ima_fat]\nseed = 7\n[solver]\nbending_stride = 1\n",
       "s.toml");
+  EXPECT_EQ(q.patch.solver.bending_stride, 1u);
+  EXPECT_EQ(q.patch.solver.coarse_stride, default_thorax_scene_params().patch.solver.coarse_stride);
   EXPECT_EQ(q.anatomy.sternum_position, Vec3(-0.03, 0.001, 0.002));
   EXPECT_EQ(q.anatomy.patient_seed, 12u);
   EXPECT_EQ(q.anatomy.ima_depth, default_thorax_scene_params().anatomy.ima_depth);
@@ -106,6 +108,8 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
       {"[solver]\niterations = 0\n",
        "bad.toml:2: key 'solver.iterations': expected an integer in [1, 512], got 0"},
       {"[solver]\ndt_s = \"fast\"\n", "bad.toml:2: key 'solver.dt_s': expected a number"},
+      {"[solver]\nbending_stride = 0\n",
+       "bad.toml:2: key 'solver.bending_stride': expected an integer in [1, 1000], got 0"},
       {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1, 1]]\n",
        "bad.toml:2: key 'vessel.centerline_m': unknown key"},
       {"\n[fasica]\nnx = 3\n", "bad.toml:2: unknown table 'fasica'; did you mean 'fascia'?"},

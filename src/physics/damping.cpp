@@ -23,28 +23,35 @@ void apply_angular_damping(const Model& model, State& state, std::size_t o, Real
   const Real* w = P.inverse_mass.data();
   const Vec3* x = P.position.data();
   Vec3* v = P.velocity.data();
-  // Centre of mass and momentum of the dynamic particles.
+  // One pass gathers the body's mass, first and second moments about a point of the body (its
+  // first dynamic particle, so that the moments stay small next to the coordinates): the centre
+  // of mass, its velocity, the angular momentum and the inertia about the centre follow from
+  // them (parallel-axis theorem) without a second pass.
+  const Vec3 origin = x[first];
   Real mass = 0;
-  Vec3 mass_position = Vec3::Zero(), momentum = Vec3::Zero();
+  Vec3 moment = Vec3::Zero(), momentum = Vec3::Zero(), moment_of_momentum = Vec3::Zero();
+  Real sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;  // sum m r r^T
   for (std::uint32_t i = first; i < end; ++i) {
     if (owner[i] != object || w[i] == 0) continue;
     const Real m = 1 / w[i];
+    const Vec3 r = x[i] - origin;
+    const Vec3 mr = m * r;
     mass += m;
-    mass_position += m * x[i];
+    moment += mr;
     momentum += m * v[i];
+    moment_of_momentum += mr.cross(v[i]);
+    sxx += mr.x() * r.x(), syy += mr.y() * r.y(), szz += mr.z() * r.z();
+    sxy += mr.x() * r.y(), sxz += mr.x() * r.z(), syz += mr.y() * r.z();
   }
   if (!(mass > 0)) return;
-  const Vec3 centre = mass_position / mass, v_cm = momentum / mass;
-  // Angular momentum and inertia about the centre of mass.
-  Vec3 angular_momentum = Vec3::Zero();
-  Mat3 inertia = Mat3::Zero();
-  for (std::uint32_t i = first; i < end; ++i) {
-    if (owner[i] != object || w[i] == 0) continue;
-    const Real m = 1 / w[i];
-    const Vec3 r = x[i] - centre;
-    angular_momentum += m * r.cross(v[i]);
-    inertia += m * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
-  }
+  const Vec3 c = moment / mass, v_cm = momentum / mass;  // c relative to origin
+  const Vec3 centre = origin + c;
+  // About the centre: L = sum m r x v - M c x v_cm; sum m r r^T - M c c^T; I = tr(A) 1 - A.
+  const Vec3 angular_momentum = moment_of_momentum - mass * c.cross(v_cm);
+  Mat3 A;
+  A << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
+  A -= mass * c * c.transpose();
+  const Mat3 inertia = A.trace() * Mat3::Identity() - A;
   const Real scale = inertia.trace();
   if (!(std::abs(inertia.determinant()) > Real(1e-12) * scale * scale * scale)) return;
   const Vec3 omega = inertia.inverse() * angular_momentum;

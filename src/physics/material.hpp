@@ -39,4 +39,13 @@ inline ProjectionTerms projection_terms(const ConstraintMaterial& m, Real h) {
   return {Real(1), m.compliance / (h * h)};
 }
 
+// A row projected once every `stride` substeps of length h, inside one of them: its correction
+// is the impulse of all `stride` (force f over stride h moves a particle by f stride h^2 / m in
+// the substep that applies it), so XPBD's alpha_tilde = alpha / (stride h^2). PBD as above.
+inline ProjectionTerms strided_projection_terms(const ConstraintMaterial& m, Real h,
+                                                std::uint32_t stride) {
+  if (m.response == Response::pbd) return {m.pbd_stiffness, Real(0)};
+  return {Real(1), m.compliance / (Real(stride) * h * h)};
+}
+
 }  // namespace imasim::physics

@@ -20,8 +20,14 @@ struct SolverParams {
   // strands) cost less. 1 = every object at every substep; a stride that does not divide
   // substeps is reduced to their greatest common divisor (effective_coarse_stride).
   std::uint32_t coarse_stride = 1;
+  // Bending (dihedral) rows of the fine objects are projected every bending_stride-th substep,
+  // each projection carrying the impulse of bending_stride substeps (alpha_tilde = alpha /
+  // (stride h^2)). Bending is soft next to stretching, so its rows need fewer projections to
+  // converge (docs/physics.md). 1 = every substep; reduced like coarse_stride.
+  std::uint32_t bending_stride = 1;
 
   std::uint32_t effective_coarse_stride() const;
+  std::uint32_t effective_bending_stride() const;
 };
 
 // Damping (eq. 4) as the paper's engine (iMSTK) reads k_l = 0.03 and k_c = 0.01 (SPEC S1): a
@@ -44,14 +50,23 @@ struct ObjectParams {
   bool coarse = false;
 };
 
-inline std::uint32_t SolverParams::effective_coarse_stride() const {
-  std::uint32_t a = coarse_stride < 1 ? 1 : coarse_stride, b = substeps < 1 ? 1 : substeps;
+// A stride of substeps that divides the substep count: their greatest common divisor.
+inline std::uint32_t stride_dividing(std::uint32_t stride, std::uint32_t substeps) {
+  std::uint32_t a = stride < 1 ? 1 : stride, b = substeps < 1 ? 1 : substeps;
   while (b != 0) {
     const std::uint32_t r = a % b;
     a = b;
     b = r;
   }
   return a;
+}
+
+inline std::uint32_t SolverParams::effective_coarse_stride() const {
+  return stride_dividing(coarse_stride, substeps);
+}
+
+inline std::uint32_t SolverParams::effective_bending_stride() const {
+  return stride_dividing(bending_stride, substeps);
 }
 
 struct Model {

@@ -4,6 +4,7 @@
 // or scalar code elsewhere). 32 bytes wide: 8 floats or 4 doubles.
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 namespace imasim::physics::simd {
 
@@ -34,6 +35,14 @@ inline constexpr std::size_t kLanes = kBytes / sizeof(S);
 template <class S>
 inline V<S> splat(S s) {
   return V<S>{} + s;
+}
+
+// kLanes<S> values from memory (any alignment).
+template <class S>
+inline V<S> load(const S* p) {
+  V<S> v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
 }
 
 template <class S>

@@ -22,6 +22,9 @@ void prepare_state(const Model& model, State& state) {
   grow(s.saved_velocity, n);
   grow(s.projection_terms, model.materials.size());
   grow(s.coarse_terms, model.materials.size());
+  grow(s.bending_terms, model.materials.size());
+  grow(s.group_start, n);
+  grow(state.velocity_offset, n);
   grow(s.object_keep, model.objects.size());
   grow(s.object_ranges, model.objects.size());  // filled by each step (step.cpp)
   // Chunks of the per-object passes: each object's range is chunked on its own.

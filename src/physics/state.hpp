@@ -25,10 +25,13 @@ struct StepScratch {
   std::vector<Vec3> saved_velocity;
   std::vector<ProjectionTerms> projection_terms;  // per material, for a fine substep
   std::vector<ProjectionTerms> coarse_terms;      // per material, for a coarse substep
-  std::vector<Real> object_keep;                  // per object: linear damping factor per substep
-  std::vector<ObjectRange> object_ranges;         // per object, for per-object passes
-  std::vector<std::uint32_t> block_first_bad;     // per particle chunk: first diverging particle
-  std::vector<std::uint32_t> validation_stamp;    // per particle, for invariant checks
+  std::vector<ProjectionTerms> bending_terms;     // per material, fine bending (bending_stride)
+  std::vector<Vec3>
+      group_start;  // fine particles' positions as the step's last bending group began
+  std::vector<Real> object_keep;                // per object: linear damping factor per substep
+  std::vector<ObjectRange> object_ranges;       // per object, for per-object passes
+  std::vector<std::uint32_t> block_first_bad;   // per particle chunk: first diverging particle
+  std::vector<std::uint32_t> validation_stamp;  // per particle, for invariant checks
   // Contact and follow rows are ordered band 0 first at the start of a step; band 1 starts here.
   std::size_t contact_split = 0, follow_split = 0;
 };
@@ -37,8 +40,14 @@ struct State {
   Particles particles;
   ConstraintSystem constraints;
   ContactSet contacts;  // gathered before each step by the surfaces' owners, projected in it
-  std::vector<FollowRow> follows;  // refreshed before each step by the couplings' owner
-  double time = 0;                 // (unit: s)
+  // With SolverParams::bending_stride > 1, a fine particle's stored velocity is its mean over
+  // the step's last bending group (stride substeps): the velocity of the last substep alone
+  // carries the strided bending's impulse in the substep that applies it, a saw-tooth of about
+  // h f_bend / (2 m) at rest. The solver's own velocity is the stored one plus this offset,
+  // added back at the next step's start, so its dynamics are the strided scheme's exactly.
+  std::vector<Vec3> velocity_offset;  // (unit: m/s); 0 for coarse and fixed particles
+  std::vector<FollowRow> follows;     // refreshed before each step by the couplings' owner
+  double time = 0;                    // (unit: s)
   std::uint64_t step_count = 0;
   StepScratch scratch;
 };

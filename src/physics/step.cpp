@@ -34,22 +34,39 @@ constexpr std::size_t kConstraintChunk = 512;
 // Once per step: fixed (kinematic) particles take predicted = position and zero velocity (the
 // substeps then need not visit them: projections never move them), and each object's range of
 // dynamic particles is found, so the per-substep passes skip fixed runs such as the fascia's
-// spare particles.
+// spare particles. With strided bending, fine particles take back their velocity offset
+// (State::velocity_offset).
 void begin_step(const Model& model, State& state) {
   Particles& P = state.particles;
   auto& ranges = state.scratch.object_ranges;
+  const bool offsets = model.solver.effective_bending_stride() > 1;
   for (ObjectRange& r : ranges)
     r.dynamic_first = r.dynamic_end = 0;
   for (std::size_t i = 0; i < P.size(); ++i) {
     if (P.inverse_mass[i] == 0) {
       P.predicted[i] = P.position[i];
       P.velocity[i].setZero();
+      state.velocity_offset[i].setZero();
       continue;
     }
     if (P.object[i] >= model.objects.size()) continue;  // validate_state reports it
+    if (offsets && !model.objects[P.object[i]].coarse) P.velocity[i] += state.velocity_offset[i];
     ObjectRange& r = ranges[P.object[i]];
     if (r.dynamic_end == 0) r.dynamic_first = static_cast<std::uint32_t>(i);
     r.dynamic_end = static_cast<std::uint32_t>(i + 1);
+  }
+}
+
+// Calls f(i) for every dynamic particle of the fine (not coarse) objects, in order.
+template <class F>
+void for_fine_particles(const Model& model, const State& state, const F& f) {
+  const Particles& P = state.particles;
+  for (std::size_t o = 0; o < model.objects.size(); ++o) {
+    if (model.objects[o].coarse) continue;
+    const ObjectRange& r = state.scratch.object_ranges[o];
+    for (std::uint32_t i = r.dynamic_first; i < r.dynamic_end; ++i) {
+      if (P.object[i] == o && P.inverse_mass[i] != 0) f(i);
+    }
   }
 }
 
@@ -137,17 +154,21 @@ void project_store(ColouredStore<Row>& store, std::uint32_t band, const Projecti
 constexpr auto kNoBatch = [](const auto*, auto*, const ProjectionContext&) {};
 static_assert(kConstraintChunk % kDihedralBatch == 0);
 
+// One sweep over a band's rows. `bending`: the context of its dihedral rows, or null in a
+// substep that does not project them (SolverParams::bending_stride).
 void project_band(ConstraintSystem& cs, std::uint32_t band, const ProjectionContext& ctx,
-                  const Executor& exec) {
+                  const ProjectionContext* bending, const Executor& exec) {
   // Lambdas (not function pointers) so that each projection inlines into its loop.
   project_store(
       cs.distance, band, ctx, exec,
       [](const DistanceRow& r, Real& l, const auto& c) { project_distance(r, l, c); }, 1, kNoBatch);
-  project_store(
-      cs.dihedral, band, ctx, exec,
-      [](const DihedralRow& r, Real& l, const auto& c) { project_dihedral(r, l, c); },
-      kDihedralBatch,
-      [](const DihedralRow* r, Real* l, const auto& c) { project_dihedral_batch(r, l, c); });
+  if (bending != nullptr) {
+    project_store(
+        cs.dihedral, band, *bending, exec,
+        [](const DihedralRow& r, Real& l, const auto& c) { project_dihedral(r, l, c); },
+        kDihedralBatch,
+        [](const DihedralRow* r, Real* l, const auto& c) { project_dihedral_batch(r, l, c); });
+  }
   project_store(
       cs.attachment, band, ctx, exec,
       [](const AttachmentRow& r, Vec3& l, const auto& c) { project_attachment(r, l, c); }, 1,
@@ -272,12 +293,15 @@ StepResult step(const Model& model, State& state, Executor& exec) {
 
   const SolverParams& solver = model.solver;
   const std::uint32_t stride = solver.effective_coarse_stride();
+  const std::uint32_t bending_stride = solver.effective_bending_stride();
   SubstepPlan plan;
   plan.fine_h = solver.dt / Real(solver.substeps);
   plan.coarse_h = plan.fine_h * Real(stride);
   for (std::size_t m = 0; m < model.materials.size(); ++m) {
     scratch.projection_terms[m] = projection_terms(model.materials[m], plan.fine_h);
     scratch.coarse_terms[m] = projection_terms(model.materials[m], plan.coarse_h);
+    scratch.bending_terms[m] =
+        strided_projection_terms(model.materials[m], plan.fine_h, bending_stride);
   }
   for (std::size_t o = 0; o < model.objects.size(); ++o) {
     const ObjectParams& object = model.objects[o];
@@ -291,13 +315,21 @@ StepResult step(const Model& model, State& state, Executor& exec) {
                                scratch.projection_terms.data()};
   const ProjectionContext coarse{P.predicted.data(), P.inverse_mass.data(),
                                  scratch.coarse_terms.data()};
+  const ProjectionContext fine_bending{P.predicted.data(), P.inverse_mass.data(),
+                                       scratch.bending_terms.data()};
 
   profile[Stage::predict] += clock.lap();
 
   StepResult result;
   exec.run([&] {
     for (std::uint32_t s = 0; s < solver.substeps; ++s) {
+      if (bending_stride > 1 && s == solver.substeps - bending_stride) {
+        for_fine_particles(model, state,
+                           [&](std::uint32_t i) { scratch.group_start[i] = P.position[i]; });
+      }
       plan.coarse_active = (s + 1) % stride == 0;
+      // The last substep of each group of bending_stride, so the step's last one projects it.
+      const bool bending_active = (s + 1) % bending_stride == 0;
       const Real tau1 = Real(s + 1) / Real(solver.substeps);
       const Real fine_tau0 = Real(s) / Real(solver.substeps);
       const Real coarse_tau0 = Real(s + 1 - stride) / Real(solver.substeps);
@@ -312,13 +344,13 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       }
       profile[Stage::solve] += clock.lap();
       for (std::uint32_t it = 0; it < solver.iterations; ++it) {
-        project_band(cs, 0, fine, exec);
+        project_band(cs, 0, fine, bending_active ? &fine_bending : nullptr, exec);
         project_follows(state, 0);
         profile[Stage::solve] += clock.lap();
         project_contacts(state, 0, fine_tau0, tau1, plan.fine_h);
         profile[Stage::contacts] += clock.lap();
         if (plan.coarse_active) {
-          project_band(cs, 1, coarse, exec);
+          project_band(cs, 1, coarse, &coarse, exec);
           project_follows(state, 1);
           profile[Stage::solve] += clock.lap();
           project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h);
@@ -354,6 +386,16 @@ StepResult step(const Model& model, State& state, Executor& exec) {
         break;
       }
     }
+  }
+  // Strided bending: the stored velocity of a fine particle is its mean over the last bending
+  // group; the solver's remains as the offset (State::velocity_offset).
+  if (result.ok() && bending_stride > 1) {
+    const Real inverse_span = 1 / (plan.fine_h * Real(bending_stride));
+    for_fine_particles(model, state, [&](std::uint32_t i) {
+      const Vec3 mean = (P.position[i] - scratch.group_start[i]) * inverse_span;
+      state.velocity_offset[i] = P.velocity[i] - mean;
+      P.velocity[i] = mean;
+    });
   }
   profile[Stage::velocities] += clock.lap();
   result.profile = profile;

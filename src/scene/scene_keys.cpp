@@ -137,6 +137,8 @@ const SceneKey kKeys[] = {
      "projection sweeps per substep (the paper: 5 sweeps of one 5 ms step)"},
     {"solver.coarse_stride", CountRef([](P& p) { return &p.patch.solver.coarse_stride; }), 1, 1000,
      "the fat strands step every this many substeps (gcd with substeps)"},
+    {"solver.bending_stride", CountRef([](P& p) { return &p.patch.solver.bending_stride; }), 1,
+     1000, "the fascia's bending rows are projected every this many substeps (gcd with substeps)"},
     {"solver.max_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.max_speed; }), 1e-6, 1e6,
      "divergence guard: a faster particle fails the step"},
 

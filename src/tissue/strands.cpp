@@ -37,6 +37,7 @@ void build_neighbours(StrandSet& set, const physics::Particles& P) {
   std::uint32_t stamp = 0;
   const std::uint32_t per = set.segments + 1;
   set.neighbour_start.assign(1, 0u);
+  set.pair_start.assign(1, 0u);
   for (std::uint32_t k = 0; k < count; ++k) {
     const bool interior = k % per != 0 && k % per != set.segments;
     if (interior) {
@@ -53,7 +54,12 @@ void build_neighbours(StrandSet& set, const physics::Particles& P) {
       });
       std::sort(found.begin(), found.end());  // grid order must not leak into the sums
       set.neighbours.insert(set.neighbours.end(), found.begin(), found.end());
+      for (auto j = std::upper_bound(found.begin(), found.end(), k); j != found.end(); ++j) {
+        set.pair_lower.push_back(k);
+        set.pair_upper.push_back(*j);
+      }
     }
+    set.pair_start.push_back(static_cast<std::uint32_t>(set.pair_lower.size()));
     set.neighbour_start.push_back(static_cast<std::uint32_t>(set.neighbours.size()));
   }
 }
@@ -119,8 +125,9 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   world.strands.push_back(std::move(set));
   world.xsph_scratch.resize(P.size());
   world.xsph_weight.resize(P.size());
-  const std::size_t neighbour_entries = world.strands.back().neighbours.size();
-  if (world.xsph_kernel.size() < neighbour_entries) world.xsph_kernel.resize(neighbour_entries);
+  const std::size_t pairs = world.strands.back().pair_lower.size();
+  if (world.xsph_kernel.size() < pairs) world.xsph_kernel.resize(pairs);
+  if (world.xsph_share.size() < pairs) world.xsph_share.resize(pairs);
   return static_cast<std::uint32_t>(world.strands.size() - 1);
 }
 

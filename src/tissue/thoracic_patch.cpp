@@ -9,7 +9,8 @@ physics::SolverParams default_solver() {
   s.dt = Real(0.005);  // 2.3.1
   s.substeps = 32;
   s.iterations = 1;
-  s.coarse_stride = 4;  // the fat strands: 8 substeps
+  s.coarse_stride = 4;   // the fat strands: 8 substeps
+  s.bending_stride = 2;  // the fascia's bending: 16 projections per step
   return s;
 }
 

@@ -77,6 +77,9 @@ struct StrandSet {
   // XSPH smoothing (SPEC S2): neighbours of each interior particle at rest, as CSR over the
   // set's particles, and the smoothing coefficient in [0, 1].
   std::vector<std::uint32_t> neighbour_start, neighbours;
+  // Each neighbour pair once, from its lower index: pairs pair_start[k] .. pair_start[k + 1]
+  // are (k, pair_upper[p]) in ascending order, and pair_lower[p] = k (for passes over all pairs).
+  std::vector<std::uint32_t> pair_start, pair_lower, pair_upper;
   Real xsph_coefficient = 0;
   Real xsph_radius = 0;  // (unit: m)
 
@@ -97,7 +100,8 @@ struct TissueWorld {
   // boundary conditions such as the heart's drive (heart_field.hpp).
   std::vector<Vec3> reference;
   std::vector<Vec3> xsph_scratch;  // velocities being smoothed, sized at set-up
-  std::vector<Real> xsph_kernel;   // W_ij per neighbour entry while smoothing, sized at set-up
+  std::vector<Real> xsph_kernel;   // W_ij per neighbour pair while smoothing, sized at set-up
+  std::vector<Real> xsph_share;    // each pair's exchange weight while smoothing, sized at set-up
   std::vector<Real> xsph_weight;   // sum_j W_ij per particle while smoothing, sized at set-up
   // Per particle: held by an instrument (grasped). Held particles follow the jaws through their
   // attachments, not the couplings (eq. 8-9), so a grasp is not undone every step.
