@@ -24,7 +24,8 @@ void prepare_state(const Model& model, State& state) {
   grow(s.coarse_terms, model.materials.size());
   grow(s.bending_terms, model.materials.size());
   grow(s.group_start, n);
-  grow(state.velocity_offset, n);
+  // Carried between steps and read before written: zeroed (Eigen's vectors are not).
+  if (state.velocity_offset.size() < n) state.velocity_offset.resize(n, Vec3::Zero());
   grow(s.object_keep, model.objects.size());
   grow(s.object_ranges, model.objects.size());  // filled by each step (step.cpp)
   // Chunks of the per-object passes: each object's range is chunked on its own.
