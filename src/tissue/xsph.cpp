@@ -22,7 +22,8 @@ Real kernel(const Vec3& xi, const Vec3& xj, Real h) {
 
 // W of every pair of the set (0 where either particle was removed by a cut), kLanes pairs at a
 // time: the square roots and divisions of a batch go through the vector units together. The
-// same operations as kernel(), lane by lane.
+// formulas of kernel(), lane by lane (the last bit may differ where the compiler fuses a multiply
+// and an add differently; each pair always takes the same path, so runs stay repeatable).
 void pair_kernels(const StrandSet& set, const Vec3* x, Real* W) {
   const auto pairs = static_cast<std::uint32_t>(set.pair_lower.size());
   const std::uint32_t first = set.first_particle;
