@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <random>
+#include <vector>
 
 #include "precision.hpp"
 #include "tissue/strands.hpp"
@@ -31,12 +32,57 @@ Real kernel(const TissueWorld& w, const StrandSet& set, std::uint32_t i, std::ui
   return r < set.xsph_radius ? (1 - r / set.xsph_radius) * (1 - r / set.xsph_radius) : Real(0);
 }
 
+// The neighbours of the set's particle k, from the pair list (each pair is listed once, from its
+// lower index), ascending.
+std::vector<std::uint32_t> neighbours_of(const StrandSet& set, std::uint32_t k) {
+  std::vector<std::uint32_t> out;
+  for (std::size_t p = 0; p < set.pair_lower.size(); ++p) {
+    if (set.pair_upper[p] == k) out.push_back(set.pair_lower[p]);
+  }
+  for (std::uint32_t p = set.pair_start[k]; p < set.pair_start[k + 1]; ++p)
+    out.push_back(set.pair_upper[p]);
+  return out;
+}
+
 // S_k = sum_j W_kj over the neighbours of the set's particle k.
 Real weight_sum(const TissueWorld& w, const StrandSet& set, std::uint32_t k) {
   Real sum = 0;
-  for (std::uint32_t n = set.neighbour_start[k]; n < set.neighbour_start[k + 1]; ++n)
-    sum += kernel(w, set, set.first_particle + k, set.first_particle + set.neighbours[n]);
+  for (std::uint32_t j : neighbours_of(set, k))
+    sum += kernel(w, set, set.first_particle + k, set.first_particle + j);
   return sum;
+}
+
+// The pair list against a search of every pair: each pair of interior particles (not a strand's
+// ends, which sit on the membranes) closer than the radius at rest, once, from its lower index.
+TEST(Xsph, PairsAreEveryInteriorPairWithinTheRadiusAtRestOnce) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  const TissueWorld& w = patch.world;
+  ASSERT_FALSE(w.strands.empty());
+  for (const StrandSet& set : w.strands) {
+    SCOPED_TRACE(set.name);
+    const std::uint32_t count = set.particle_count(), per = set.segments + 1;
+    ASSERT_EQ(set.pair_start.size(), std::size_t(count) + 1);
+    ASSERT_EQ(set.pair_lower.size(), set.pair_upper.size());
+    ASSERT_EQ(set.pair_start.back(), set.pair_lower.size());
+    auto interior = [&](std::uint32_t k) { return k % per != 0 && k % per != set.segments; };
+    std::size_t expected = 0;
+    for (std::uint32_t k = 0; k < count; ++k) {
+      std::vector<std::uint32_t> within;
+      for (std::uint32_t j = k + 1; j < count && interior(k); ++j) {
+        const Vec3 d = w.state.particles.rest_position[set.first_particle + j] -
+                       w.state.particles.rest_position[set.first_particle + k];
+        if (interior(j) && d.squaredNorm() < set.xsph_radius * set.xsph_radius) within.push_back(j);
+      }
+      const std::vector<std::uint32_t> listed(set.pair_upper.begin() + set.pair_start[k],
+                                              set.pair_upper.begin() + set.pair_start[k + 1]);
+      ASSERT_EQ(listed, within) << "particle " << k;
+      for (std::uint32_t p = set.pair_start[k]; p < set.pair_start[k + 1]; ++p)
+        ASSERT_EQ(set.pair_lower[p], k);
+      expected += within.size();
+    }
+    EXPECT_EQ(set.pair_lower.size(), expected);
+    EXPECT_GT(expected, std::size_t(count));  // the radius reaches across strands
+  }
 }
 
 TEST(Xsph, PullsAnOutlierTowardsItsNeighbours) {
@@ -47,8 +93,11 @@ TEST(Xsph, PullsAnOutlierTowardsItsNeighbours) {
     v.setZero();
   // The interior particle with the most neighbours moves at 1 cm/s along x.
   std::uint32_t k_best = 0, most = 0;
+  std::vector<std::uint32_t> count(set.particle_count(), 0);
+  for (std::size_t p = 0; p < set.pair_lower.size(); ++p)
+    ++count[set.pair_lower[p]], ++count[set.pair_upper[p]];
   for (std::uint32_t k = 0; k < set.particle_count(); ++k) {
-    const std::uint32_t n = set.neighbour_start[k + 1] - set.neighbour_start[k];
+    const std::uint32_t n = count[k];
     if (n > most) most = n, k_best = k;
   }
   ASSERT_GT(most, 2u);
@@ -60,10 +109,9 @@ TEST(Xsph, PullsAnOutlierTowardsItsNeighbours) {
   // neighbour gains what it loses, v_j' = c W_ij / max(S_i, S_j) v_i <= c v_i.
   Real kept = 1, given = 0;
   int moved = 0;
-  for (std::uint32_t n = set.neighbour_start[k_best]; n < set.neighbour_start[k_best + 1]; ++n) {
-    const std::uint32_t j = set.first_particle + set.neighbours[n];
-    const Real share =
-        c * kernel(w, set, i, j) / std::max(S_i, weight_sum(w, set, set.neighbours[n]));
+  for (std::uint32_t k : neighbours_of(set, k_best)) {
+    const std::uint32_t j = set.first_particle + k;
+    const Real share = c * kernel(w, set, i, j) / std::max(S_i, weight_sum(w, set, k));
     kept -= share;
     const double vx = w.state.particles.velocity[j].x();
     EXPECT_NEAR(vx, share * 0.01, 1e-17);

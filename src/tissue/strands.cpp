@@ -25,7 +25,7 @@ geometry::TriangleMesh current_mesh(const TissueWorld& w, const MeshObject& m) {
   return mesh;
 }
 
-// Neighbours of each interior particle within `radius` at rest (CSR over the set's particles).
+// Each pair of interior particles within `radius` at rest, listed once from its lower index.
 void build_neighbours(StrandSet& set, const physics::Particles& P) {
   const std::uint32_t count = set.particle_count();
   std::vector<geometry::Box> boxes;
@@ -36,7 +36,6 @@ void build_neighbours(StrandSet& set, const physics::Particles& P) {
   std::vector<std::uint32_t> visited;
   std::uint32_t stamp = 0;
   const std::uint32_t per = set.segments + 1;
-  set.neighbour_start.assign(1, 0u);
   set.pair_start.assign(1, 0u);
   for (std::uint32_t k = 0; k < count; ++k) {
     const bool interior = k % per != 0 && k % per != set.segments;
@@ -53,14 +52,12 @@ void build_neighbours(StrandSet& set, const physics::Particles& P) {
         }
       });
       std::sort(found.begin(), found.end());  // grid order must not leak into the sums
-      set.neighbours.insert(set.neighbours.end(), found.begin(), found.end());
       for (auto j = std::upper_bound(found.begin(), found.end(), k); j != found.end(); ++j) {
         set.pair_lower.push_back(k);
         set.pair_upper.push_back(*j);
       }
     }
     set.pair_start.push_back(static_cast<std::uint32_t>(set.pair_lower.size()));
-    set.neighbour_start.push_back(static_cast<std::uint32_t>(set.neighbours.size()));
   }
 }
 

@@ -74,11 +74,10 @@ struct StrandSet {
   // stale once removed) and whether each strand has been cut.
   std::vector<physics::DistanceHandle> segment_constraint;
   std::vector<std::uint8_t> cut;
-  // XSPH smoothing (SPEC S2): neighbours of each interior particle at rest, as CSR over the
-  // set's particles, and the smoothing coefficient in [0, 1].
-  std::vector<std::uint32_t> neighbour_start, neighbours;
-  // Each neighbour pair once, from its lower index: pairs pair_start[k] .. pair_start[k + 1]
-  // are (k, pair_upper[p]) in ascending order, and pair_lower[p] = k (for passes over all pairs).
+  // XSPH smoothing (SPEC S2): the neighbours at rest, each pair once from its lower index (over
+  // the set's particles): pairs pair_start[k] .. pair_start[k + 1] are (k, pair_upper[p]) in
+  // ascending order, and pair_lower[p] = k (for passes over all pairs); the smoothing
+  // coefficient in [0, 1].
   std::vector<std::uint32_t> pair_start, pair_lower, pair_upper;
   Real xsph_coefficient = 0;
   Real xsph_radius = 0;  // (unit: m)
