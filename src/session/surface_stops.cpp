@@ -70,8 +70,7 @@ SurfaceStop surface_stop(SurgicalSession& s, const Station& st, bool heart) {
   }
   if (n.norm() > 0) stop.normal = n.normalized();
   if (heart) {
-    stop.velocity = tissue::heart_surface_velocity(s.scene.heart, stop.point, kHeartSearch,
-                                                   s.scene.patch.world.model.solver.dt);
+    stop.velocity = tissue::heart_surface_velocity(s.scene.heart, stop.point, kHeartSearch);
   }
   return stop;
 }

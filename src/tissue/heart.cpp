@@ -142,21 +142,48 @@ HeartModel make_procedural_heart(const HeartParams& p) {
   return heart;
 }
 
-void interpolate_heart(const HeartModel& heart, Real t, std::vector<Vec3>& out) {
+namespace {
+
+// Where cycle fraction t falls among the keyframes: the four frames of its Catmull-Rom span and
+// the share u in [0, 1) of the way from the second to the third.
+struct KeyframeSpan {
+  const std::vector<Vec3>*p0, *p1, *p2, *p3;
+  Real u;
+};
+
+KeyframeSpan keyframe_span(const HeartModel& heart, Real t) {
   const auto n = static_cast<std::int64_t>(heart.keyframes.size());
   const Real x = (t - std::floor(t)) * Real(n);
   const auto k = static_cast<std::int64_t>(std::floor(x));
-  const Real u = x - Real(k), u2 = u * u, u3 = u2 * u;
-  auto frame = [&](std::int64_t i) -> const std::vector<Vec3>& {
-    return heart.keyframes[static_cast<std::size_t>(((i % n) + n) % n)];
+  auto frame = [&](std::int64_t i) {
+    return &heart.keyframes[static_cast<std::size_t>(((i % n) + n) % n)];
   };
-  const auto &p0 = frame(k - 1), &p1 = frame(k), &p2 = frame(k + 1), &p3 = frame(k + 2);
+  return {frame(k - 1), frame(k), frame(k + 1), frame(k + 2), x - Real(k)};
+}
+
+}  // namespace
+
+void interpolate_heart(const HeartModel& heart, Real t, std::vector<Vec3>& out) {
+  const KeyframeSpan s = keyframe_span(heart, t);
+  const Real u = s.u, u2 = u * u, u3 = u2 * u;
   // Uniform Catmull-Rom: C1, through the keyframes, tangents (p_{k+1} - p_{k-1}) / 2.
   const Real a = (-u3 + 2 * u2 - u) / 2, b = (3 * u3 - 5 * u2 + 2) / 2;
   const Real c = (-3 * u3 + 4 * u2 + u) / 2, d = (u3 - u2) / 2;
+  const auto &p0 = *s.p0, &p1 = *s.p1, &p2 = *s.p2, &p3 = *s.p3;
   out.resize(p1.size());
   for (std::size_t i = 0; i < p1.size(); ++i)
     out[i] = a * p0[i] + b * p1[i] + c * p2[i] + d * p3[i];
+}
+
+Vec3 heart_vertex_rate(const HeartModel& heart, Real t, std::uint32_t vertex) {
+  const KeyframeSpan s = keyframe_span(heart, t);
+  const Real u = s.u, u2 = u * u;
+  // The basis of interpolate_heart differentiated in u; du/dt = n, the keyframe count.
+  const Real a = (-3 * u2 + 4 * u - 1) / 2, b = (9 * u2 - 10 * u) / 2;
+  const Real c = (-9 * u2 + 8 * u + 1) / 2, d = (3 * u2 - 2 * u) / 2;
+  const Real n = Real(heart.keyframes.size());
+  return n *
+         (a * (*s.p0)[vertex] + b * (*s.p1)[vertex] + c * (*s.p2)[vertex] + d * (*s.p3)[vertex]);
 }
 
 Real component_volume(const HeartModel& heart, const std::vector<Vec3>& x, std::uint32_t c) {
@@ -164,6 +191,10 @@ Real component_volume(const HeartModel& heart, const std::vector<Vec3>& x, std::
   return geometry::enclosed_volume(
       x, std::span(heart.topology.triangles)
              .subspan(first, heart.component_triangle_start[c + 1] - first));
+}
+
+Real HeartPlayback::cycles_per_second() const {
+  return beating ? heart_rate_bpm / Real(60) : Real(0);
 }
 
 Real HeartPlayback::phase_at(double time_s) const {

@@ -70,6 +70,10 @@ Real heart_volume_fraction(const HeartParams& params, Real t);
 // passes through every keyframe). Writes vertex positions into `out` (sized to the vertices).
 void interpolate_heart(const HeartModel& heart, Real t, std::vector<Vec3>& out);
 
+// The derivative of interpolate_heart's `vertex` with respect to the cycle fraction t (unit: m
+// per cycle); continuous in t, as the interpolation is C1.
+Vec3 heart_vertex_rate(const HeartModel& heart, Real t, std::uint32_t vertex);
+
 // Enclosed volume of component c (LV 0, RV 1) of a heart shape (unit: m^3).
 Real component_volume(const HeartModel& heart, const std::vector<Vec3>& positions,
                       std::uint32_t component);
@@ -84,6 +88,8 @@ struct HeartPlayback {
   // Cycle fraction in [0, 1): static_phase + time * rate when beating (so both modes start from
   // the same shape), static_phase when not.
   Real phase_at(double time_s) const;
+  // d(phase)/d(time): heart_rate_bpm / 60 when beating, 0 when not (unit: 1/s).
+  Real cycles_per_second() const;
 };
 
 }  // namespace imasim::tissue

@@ -200,8 +200,9 @@ Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
   return inside < 0 ? inside : outside;
 }
 
-Vec3 heart_surface_velocity(HeartField& h, const Vec3& p, Real search, Real dt) {
-  if (!(dt > 0)) return Vec3::Zero();
+Vec3 heart_surface_velocity(HeartField& h, const Vec3& p, Real search) {
+  const Real rate = h.playback.cycles_per_second();  // (unit: 1/s)
+  if (!(rate > 0)) return Vec3::Zero();
   nearest_per_component(h, p, search);
   const HeartField::Nearest* best = nullptr;
   for (const HeartField::Nearest& n : h.nearest)
@@ -211,10 +212,9 @@ Vec3 heart_surface_velocity(HeartField& h, const Vec3& p, Real search, Real dt) 
   const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
       p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
   Vec3 v = Vec3::Zero();
-  for (int k = 0; k < 3; ++k)
-    v +=
-        q.bary[std::size_t(k)] * (h.current[tri[std::size_t(k)]] - h.previous[tri[std::size_t(k)]]);
-  return v / dt;
+  for (std::size_t k = 0; k < 3; ++k)
+    v += q.bary[k] * heart_vertex_rate(h.model, h.phase, tri[k]);
+  return rate * v;
 }
 
 std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,

@@ -103,10 +103,11 @@ void nearest_per_component(HeartField& heart, const Vec3& p, Real search);
 // +infinity when no heart triangle lies within `search` (unit: m).
 Real heart_signed_distance(HeartField& heart, const Vec3& p, Real search);
 
-// The velocity of the heart's surface at its point nearest p (within `search`), over the last
-// advance_heart of length dt: (current - previous) / dt interpolated with the nearest point's
-// barycentric weights (unit: m/s). Zero when no surface lies within `search` or dt <= 0. The
-// local model of the haptic loop carries the heart's contact plane with it (issue 13).
-Vec3 heart_surface_velocity(HeartField& heart, const Vec3& p, Real search, Real dt);
+// The velocity of the heart's surface at its point nearest p (within `search`) now, at the
+// phase of the last advance_heart: the time derivative of the playback (heart_vertex_rate times
+// the cycles per second) mixed with the nearest point's barycentric weights (unit: m/s). Zero
+// when no surface lies within `search` or the heart is still. The local model of the haptic loop
+// carries the heart's contact plane with it between physics steps (issue 13).
+Vec3 heart_surface_velocity(HeartField& heart, const Vec3& p, Real search);
 
 }  // namespace imasim::tissue
