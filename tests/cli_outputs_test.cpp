@@ -208,6 +208,10 @@ TEST(RunDevices, BadRequestsAreClearErrors) {
                              "/examples/open_fascia.script --port 1 --wait 0.2");
   EXPECT_EQ(alone.exit_code, 2);
   EXPECT_NE(alone.err.find("nobody answers at 127.0.0.1:1"), std::string::npos) << alone.err;
+  // Without --script it plays the built-in example script: it gets as far as calling.
+  const Finished built_in = run("device-emulator --port 1 --wait 0.2");
+  EXPECT_EQ(built_in.exit_code, 2);
+  EXPECT_NE(built_in.err.find("nobody answers at 127.0.0.1:1"), std::string::npos) << built_in.err;
 }
 
 }  // namespace

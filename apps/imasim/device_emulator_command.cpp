@@ -9,6 +9,7 @@
 #include "cli_checks.hpp"
 #include "console/console_settings_use.hpp"
 #include "devices/emulated_console.hpp"
+#include "example_script.hpp"
 #include "interrupt.hpp"
 #include "report.hpp"
 #include "scene/scene_file.hpp"
@@ -31,8 +32,9 @@ std::shared_ptr<DeviceEmulatorOptions> add_device_emulator_command(CLI::App& app
   auto opt = std::make_shared<DeviceEmulatorOptions>();
   CLI::App* cmd = app.add_subcommand("device-emulator",
                                      "Two emulated haptic devices driving imasim over OpenIGTLink");
-  cmd->add_option("--script", opt->script_file, "Input script giving each hand's path")
-      ->required()
+  cmd->add_option("--script", opt->script_file,
+                  "Input script giving each hand's path (default: the built-in "
+                  "examples/open_fascia.script)")
       ->check(non_empty());
   cmd->add_option("--scene", opt->scene_file, "Scene file naming the devices (devices.*)")
       ->check(non_empty());
@@ -53,7 +55,7 @@ std::shared_ptr<DeviceEmulatorOptions> add_device_emulator_command(CLI::App& app
 int run_device_emulator_command(const DeviceEmulatorOptions& o) {
   surgery::InputScript script;
   try {
-    script = surgery::load_input_script(o.script_file);
+    script = load_script_or_example(o.script_file);
   } catch (const surgery::InputScriptError& e) {
     std::cerr << e.what() << '\n';
     return 2;

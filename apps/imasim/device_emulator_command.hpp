@@ -1,5 +1,5 @@
 #pragma once
-// `imasim device-emulator --script FILE [--address A] [--port P] [--seconds T] [--json]`: a
+// `imasim device-emulator [--script FILE] [--address A] [--port P] [--seconds T] [--json]`: a
 // separate program that behaves like two desktop haptic devices on an OpenIGTLink console
 // (devices/emulated_console.hpp): each hand a mass-spring-damper at 1 kHz steered along the
 // script's path for that hand (console hand or tool poses), applying the force imasim sends
@@ -15,8 +15,8 @@
 namespace imasim::cli {
 
 struct DeviceEmulatorOptions {
-  std::string script_file;
-  std::string scene_file;  // for the device names (devices.*); empty: the defaults
+  std::string script_file;  // empty: the built-in example script (example_script.hpp)
+  std::string scene_file;   // for the device names (devices.*); empty: the defaults
   std::string address = "127.0.0.1";
   std::uint16_t port = 18944;
   double seconds = 0;  // 0: the script's end + 0.5 s

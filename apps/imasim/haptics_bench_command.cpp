@@ -19,8 +19,9 @@ std::shared_ptr<HapticsBenchOptions> add_haptics_bench_command(CLI::App& app) {
   cmd->add_option("--seconds", opt->seconds, "Wall-clock seconds to run")
       ->capture_default_str()
       ->check(finite_range(0.1, 3600));
-  cmd->add_option("--script", opt->script_file, "The path the emulated devices play, over and over")
-      ->capture_default_str()
+  cmd->add_option("--script", opt->script_file,
+                  "The path the emulated devices play, over and over (default: the built-in "
+                  "examples/open_fascia.script)")
       ->check(non_empty());
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
   return opt;

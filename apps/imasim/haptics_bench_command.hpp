@@ -20,7 +20,7 @@ namespace imasim::cli {
 
 struct HapticsBenchOptions {
   double seconds = 10;
-  std::string script_file = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fascia.script";
+  std::string script_file;  // empty: the built-in example script (example_script.hpp)
   bool json = false;
 };
 

@@ -91,9 +91,9 @@ std::vector<std::unique_ptr<devices::InputDevice>> make_live_devices(const LiveI
 
 pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
                      double seconds, bool loop) {
-  std::vector<std::string> args = {
-      "device-emulator",      "--script", script, "--port", std::to_string(port), "--seconds",
-      std::to_string(seconds)};
+  std::vector<std::string> args = {"device-emulator", "--port", std::to_string(port), "--seconds",
+                                   std::to_string(seconds)};
+  if (!script.empty()) args.insert(args.end(), {"--script", script});  // else the built-in one
   if (loop) args.push_back("--loop");
   if (!scene.empty()) args.insert(args.end(), {"--scene", scene});
   int error = 0;
