@@ -2,6 +2,7 @@
 // masses, couplings and bindings consistent; a cut along the tool's path over many steps opens
 // the fascia along it; 10,000 random cuts keep every invariant.
 #include "surgery/fascia_cut.hpp"
+#include "surgery/fascia_fragments.hpp"
 
 #include <gtest/gtest.h>
 
@@ -210,7 +211,10 @@ CuttingGeometry random_cut(std::mt19937_64& rng, const tissue::FasciaParams& f) 
   return g;
 }
 
-std::uint64_t fuzz(int cuts, bool check_each, std::uint64_t seed, std::string& defect) {
+// Random cuts (and, with `vaporise`, the small free pieces they leave taken out after each, as
+// the session does); `fragments` counts the pieces taken.
+std::uint64_t fuzz(int cuts, bool check_each, std::uint64_t seed, std::string& defect,
+                   bool vaporise = false, std::uint32_t* fragments = nullptr) {
   tissue::ThoracicPatchParams params = tissue::default_thoracic_patch_params();
   params.fascia.object.spare_vertices = 40000;
   tissue::ThoracicPatch patch = tissue::make_thoracic_patch(params);
@@ -224,6 +228,14 @@ std::uint64_t fuzz(int cuts, bool check_each, std::uint64_t seed, std::string& d
     if (r.status != tissue::EditStatus::applied) {
       defect = "cut " + std::to_string(n) + " was refused";
       return 0;
+    }
+    if (vaporise) {
+      const FragmentRemoval gone = vaporise_free_fragments(w, FragmentParams{}, cutter);
+      if (gone.status != tissue::EditStatus::applied) {
+        defect = "the pieces cut " + std::to_string(n) + " freed could not be removed";
+        return 0;
+      }
+      if (fragments) *fragments += gone.fragments;
     }
     if (check_each || n + 1 == cuts) {
       defect = tissue::first_topology_defect(w, patch.fascia, cut_checks(cut_params));
@@ -251,6 +263,19 @@ TEST(FasciaCut, TenThousandRandomCutsKeepEveryInvariant) {
   const std::uint64_t hash = fuzz(kFuzzCuts, true, 2026, defect);
   EXPECT_EQ(defect, "");
   EXPECT_NE(hash, 0u);
+}
+
+TEST(FasciaCut, RandomCutsWithTheirFreedPiecesVaporisedKeepEveryInvariant) {
+  std::string defect;
+  std::uint32_t fragments = 0;
+  const std::uint64_t hash = fuzz(kFuzzCuts / 5, true, 2027, defect, true, &fragments);
+  EXPECT_EQ(defect, "");
+  EXPECT_NE(hash, 0u);
+  EXPECT_GT(fragments, 10u);  // random cuts free many small pieces
+  std::string again;
+  std::uint32_t fragments_again = 0;
+  EXPECT_EQ(fuzz(kFuzzCuts / 5, false, 2027, again, true, &fragments_again), hash);
+  EXPECT_EQ(fragments_again, fragments);
 }
 
 TEST(FasciaCut, CuttingIsDeterministic) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/closest_point.hpp"
 #include "geometry/vertex_normals.hpp"
 #include "math/validation_assert.hpp"
 #include "physics/membrane_material.hpp"
@@ -161,6 +162,62 @@ std::string edit_problem(const MeshObject& m, const MeshEdit& edit) {
   return "";
 }
 
+// Removes the constraints of the edges `touched` (sorted keys) and clears them in the index.
+void remove_edge_constraints(TissueWorld& w, MeshObject& m,
+                             const std::vector<std::uint64_t>& touched, TopologyChange& change) {
+  auto& cs = w.state.constraints;
+  for (std::uint64_t key : touched) {
+    const auto it = m.edges.find(key);
+    if (it == m.edges.end()) continue;
+    IMASIM_ASSERT(cs.distance.resolves(it->second.distance));  // every edge has its row
+    if (cs.distance.remove(it->second.distance))
+      change.distance_removed.push_back(it->second.distance);
+    if (cs.dihedral.remove(it->second.dihedral))
+      change.dihedral_removed.push_back(it->second.dihedral);
+    it->second.distance = {};
+    it->second.dihedral = {};
+  }
+}
+
+// Gives each edge of `touched` (sorted keys) that still has a face the constraints the mesh
+// needs now (eq. 2 on every edge, eq. 3 on interior ones) and drops those left without a face.
+void add_edge_constraints(TissueWorld& w, MeshObject& m, const std::vector<std::uint64_t>& touched,
+                          TopologyChange& change) {
+  physics::Particles& P = w.state.particles;
+  auto& cs = w.state.constraints;
+  const std::uint32_t first = m.first_particle;
+  for (std::uint64_t key : touched) {
+    const auto it = m.edges.find(key);
+    if (it == m.edges.end()) continue;
+    EdgeRecord& r = it->second;
+    if (r.faces[0] == kNoFace) {
+      m.edges.erase(it);
+      continue;
+    }
+    const Triangle& f0 = m.triangles[r.faces[0]];
+    auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
+    if (!runs_from(f0, a, b)) std::swap(a, b);  // f0 runs a -> b: its wing is p0 (eq. 3)
+    // Membrane rows take their compliance scale from the new rest geometry.
+    const bool membrane = m.per_row == physics::CompliancePerRow::membrane;
+    const Real length2 = (P.rest_position[first + a] - P.rest_position[first + b]).squaredNorm();
+    Real area = physics::rest_triangle_area(P, first, f0);
+    if (r.faces[1] != kNoFace)
+      area += physics::rest_triangle_area(P, first, m.triangles[r.faces[1]]);
+    r.distance = physics::add_distance(
+        cs, P, first + a, first + b, m.stretch_material,
+        membrane ? physics::stretch_compliance_scale(length2, area) : Real(1));
+    change.distance_added.push_back(r.distance);
+    if (r.faces[1] != kNoFace) {
+      const Triangle& f1 = m.triangles[r.faces[1]];
+      r.dihedral = physics::add_dihedral(
+          cs, P, first + opposite_vertex(f0, a, b), first + opposite_vertex(f1, a, b), first + a,
+          first + b, m.bend_material,
+          membrane ? physics::bend_compliance_scale(length2, area) : Real(1));
+      change.dihedral_added.push_back(r.dihedral);
+    }
+  }
+}
+
 }  // namespace
 
 geometry::TriangleMesh rest_mesh(const TissueWorld& w, const MeshObject& m) {
@@ -215,7 +272,6 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
   }
   if (edit.empty()) return change;
   physics::Particles& P = w.state.particles;
-  auto& cs = w.state.constraints;
   const std::uint32_t first = m.first_particle, n_old = m.particle_count;
   const auto n_new = static_cast<std::uint32_t>(n_old + edit.vertices.size());
 
@@ -235,17 +291,7 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
 
-  for (std::uint64_t key : touched) {
-    const auto it = m.edges.find(key);
-    if (it == m.edges.end()) continue;
-    IMASIM_ASSERT(cs.distance.resolves(it->second.distance));  // every edge has its row
-    if (cs.distance.remove(it->second.distance))
-      change.distance_removed.push_back(it->second.distance);
-    if (cs.dihedral.remove(it->second.dihedral))
-      change.dihedral_removed.push_back(it->second.dihedral);
-    it->second.distance = {};
-    it->second.dihedral = {};
-  }
+  remove_edge_constraints(w, m, touched, change);
 
   // New particles, interpolated from their parents.
   for (std::uint32_t k = 0; k < edit.vertices.size(); ++k) {
@@ -294,37 +340,7 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
     if (!P.is_fixed(first + v)) P.inverse_mass[first + v] = inverse_vertex_mass;
   }
 
-  // Constraints of the touched edges that exist now.
-  for (std::uint64_t key : touched) {
-    const auto it = m.edges.find(key);
-    if (it == m.edges.end()) continue;
-    EdgeRecord& r = it->second;
-    if (r.faces[0] == kNoFace) {
-      m.edges.erase(it);
-      continue;
-    }
-    const Triangle& f0 = m.triangles[r.faces[0]];
-    auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key);
-    if (!runs_from(f0, a, b)) std::swap(a, b);  // f0 runs a -> b: its wing is p0 (eq. 3)
-    // Membrane rows take their compliance scale from the new rest geometry.
-    const bool membrane = m.per_row == physics::CompliancePerRow::membrane;
-    const Real length2 = (P.rest_position[first + a] - P.rest_position[first + b]).squaredNorm();
-    Real area = physics::rest_triangle_area(P, first, f0);
-    if (r.faces[1] != kNoFace)
-      area += physics::rest_triangle_area(P, first, m.triangles[r.faces[1]]);
-    r.distance = physics::add_distance(
-        cs, P, first + a, first + b, m.stretch_material,
-        membrane ? physics::stretch_compliance_scale(length2, area) : Real(1));
-    change.distance_added.push_back(r.distance);
-    if (r.faces[1] != kNoFace) {
-      const Triangle& f1 = m.triangles[r.faces[1]];
-      r.dihedral = physics::add_dihedral(
-          cs, P, first + opposite_vertex(f0, a, b), first + opposite_vertex(f1, a, b), first + a,
-          first + b, m.bend_material,
-          membrane ? physics::bend_compliance_scale(length2, area) : Real(1));
-      change.dihedral_added.push_back(r.dihedral);
-    }
-  }
+  add_edge_constraints(w, m, touched, change);
 
   // Mappings onto the mesh.
   for (StrandSet& s : w.strands) {
@@ -345,12 +361,164 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
   return change;
 }
 
+TopologyChange remove_mesh_triangles(TissueWorld& w, std::uint32_t mesh,
+                                     std::span<const std::uint32_t> triangles) {
+  TopologyChange change;
+  MeshObject& m = w.meshes[mesh];
+  change.first_new_vertex = m.particle_count;
+  const auto face_count = static_cast<std::uint32_t>(m.triangles.size());
+  std::vector<std::uint8_t> gone(face_count, 0);
+  for (std::uint32_t f : triangles) {
+    if (f >= face_count) {
+      change.status = EditStatus::invalid;
+      change.message = m.name + ": a removed triangle does not exist";
+      return change;
+    }
+    gone[f] = 1;
+  }
+  const auto removed = static_cast<std::uint32_t>(std::count(gone.begin(), gone.end(), 1));
+  if (removed == 0) return change;
+  if (removed == face_count) {
+    change.status = EditStatus::invalid;
+    change.message = m.name + ": removing every triangle";
+    return change;
+  }
+  physics::Particles& P = w.state.particles;
+  const std::uint32_t first = m.first_particle;
+  // Vertices left in no triangle are retired: they must carry no coupling, nor be held.
+  std::vector<std::uint8_t> used(m.particle_count, 0);
+  for (std::uint32_t f = 0; f < face_count; ++f) {
+    if (!gone[f])
+      for (std::uint32_t v : m.triangles[f])
+        used[v] = 1;
+  }
+  auto retiring = [&](std::uint32_t particle) {
+    return particle >= first && particle < first + m.particle_count && !used[particle - first];
+  };
+  for (std::uint32_t v = 0; v < m.particle_count; ++v) {
+    if (!used[v] && first + v < w.held.size() && w.held[first + v]) {
+      change.status = EditStatus::invalid;
+      change.message = m.name + ": a removed vertex is held by an instrument";
+      return change;
+    }
+  }
+  for (const OffsetCoupling& c : w.couplings) {
+    for (const auto& pair : c.pairs) {
+      if (retiring(pair.second)) {
+        change.status = EditStatus::invalid;
+        change.message = m.name + ": a removed vertex is moved by coupling " + c.name;
+        return change;
+      }
+    }
+  }
+
+  // The removed triangles' edges lose their constraints and those faces.
+  std::vector<std::uint64_t> touched;
+  for (std::uint32_t f = 0; f < face_count; ++f) {
+    if (!gone[f]) continue;
+    const Triangle& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      touched.push_back(edge_key(t[k], t[(k + 1) % 3]));
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  remove_edge_constraints(w, m, touched, change);
+  for (std::uint32_t f = 0; f < face_count; ++f) {
+    if (!gone[f]) continue;
+    const Triangle& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      remove_face(m.edges[edge_key(t[k], t[(k + 1) % 3])], f);
+  }
+
+  // Bindings on a removed triangle move to the surviving triangle nearest their point now: the
+  // piece was freed where it lies, beside the sheet's edge it parted from (at rest the nearest
+  // triangle could be across the cut, on a flap held far away). The binding's new barycentric
+  // coordinates are those of that nearest point.
+  const std::vector<Triangle> before = m.triangles;
+  auto rehome = [&](geometry::SurfaceBinding& b) {
+    if (b.triangle >= face_count || !gone[b.triangle]) return;
+    const Triangle& old = before[b.triangle];
+    auto now = [&](std::uint32_t v) { return P.position[first + v]; };
+    const Vec3 p = b.bary[0] * now(old[0]) + b.bary[1] * now(old[1]) + b.bary[2] * now(old[2]);
+    Real best = std::numeric_limits<Real>::infinity();
+    for (std::uint32_t f = 0; f < face_count; ++f) {
+      if (gone[f]) continue;
+      const Triangle& t = before[f];
+      const geometry::TrianglePoint q =
+          geometry::closest_point_on_triangle(p, now(t[0]), now(t[1]), now(t[2]));
+      if (q.distance2 < best) {
+        best = q.distance2;
+        b.triangle = f;
+        b.bary = q.bary;
+      }
+    }
+  };
+
+  // The survivors keep their order; every index to a triangle is renumbered.
+  std::vector<std::uint32_t> renumber(face_count, kNoFace);
+  std::uint32_t next = 0;
+  for (std::uint32_t f = 0; f < face_count; ++f) {
+    if (gone[f]) continue;
+    renumber[f] = next;
+    m.triangles[next++] = before[f];
+  }
+  m.triangles.resize(next);
+  for (auto& [key, r] : m.edges) {
+    for (std::uint32_t& face : r.faces)
+      if (face != kNoFace) face = renumber[face];
+  }
+  auto renumber_bindings = [&](std::vector<geometry::SurfaceBinding>& bindings,
+                               std::vector<std::uint32_t>* faces) {
+    for (std::size_t k = 0; k < bindings.size(); ++k) {
+      rehome(bindings[k]);
+      if (bindings[k].triangle < face_count) bindings[k].triangle = renumber[bindings[k].triangle];
+      if (faces) (*faces)[k] = bindings[k].triangle;
+    }
+  };
+  for (StrandSet& s : w.strands) {
+    if (s.mesh_a == mesh) renumber_bindings(s.end_a, &s.face_a);
+    if (s.mesh_b == mesh) renumber_bindings(s.end_b, nullptr);
+  }
+  for (VisualMesh& v : w.visuals)
+    if (v.source_mesh == mesh) renumber_bindings(v.bindings, nullptr);
+
+  // Retired vertices: fixed where they are, at rest (eq. 5's share of a vertex leaves with
+  // them: the others keep M_total / n).
+  for (std::uint32_t v = 0; v < m.particle_count; ++v) {
+    if (used[v]) continue;
+    const std::uint32_t i = first + v;
+    P.inverse_mass[i] = 0;
+    P.velocity[i] = Vec3::Zero();
+    P.predicted[i] = P.position[i];
+  }
+  // What a retired vertex drove through a coupling is no longer driven by it.
+  for (OffsetCoupling& c : w.couplings)
+    std::erase_if(c.pairs, [&](const auto& pair) { return retiring(pair.first); });
+  add_edge_constraints(w, m, touched, change);
+  geometry::compute_vertex_normals(mesh_positions(w, m), m.triangles, m.normals);
+  return change;
+}
+
 std::string first_topology_defect(TissueWorld& w, std::uint32_t mesh,
                                   const geometry::MeshCheckOptions& options) {
   const MeshObject& m = w.meshes[mesh];
   const std::string where = m.name + ": ";
   const geometry::TriangleMesh rest = rest_mesh(w, m);
-  if (std::string d = geometry::first_mesh_defect(rest, options); !d.empty()) return where + d;
+  geometry::MeshCheckOptions checks = options;
+  checks.require_used_vertices =
+      false;  // retired vertices (remove_mesh_triangles) are checked below
+  if (std::string d = geometry::first_mesh_defect(rest, checks); !d.empty()) return where + d;
+  std::vector<std::uint8_t> used(m.particle_count, 0);
+  for (const Triangle& t : m.triangles)
+    for (std::uint32_t v : t)
+      used[v] = 1;
+  for (std::uint32_t v = 0; v < m.particle_count; ++v) {
+    const std::uint32_t i = m.first_particle + v;
+    const physics::Particles& P = w.state.particles;
+    if (!used[v] && options.require_used_vertices &&
+        (!P.is_fixed(i) || P.velocity[i] != Vec3::Zero()))
+      return where + "vertex " + std::to_string(v) + " is in no triangle but not retired";
+  }
 
   // The edge index and the constraints on each edge.
   const geometry::EdgeAdjacency adjacency = geometry::build_edge_adjacency(rest);
@@ -402,7 +570,9 @@ std::string first_topology_defect(TissueWorld& w, std::uint32_t mesh,
     return where + std::to_string(on_mesh) + " distance constraints for " +
            std::to_string(adjacency.edges.size()) + " edges";
   }
-  auto unused = [&](std::uint32_t p) { return p >= live_end && p < end; };
+  auto unused = [&](std::uint32_t p) {
+    return (p >= live_end && p < end) || (p >= first && p < live_end && !used[p - first]);
+  };
   for (const auto& g : cs.dihedral.groups()) {
     for (const physics::DihedralRow& r : g.rows) {
       for (std::uint32_t p : r.p)

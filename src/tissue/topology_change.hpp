@@ -16,6 +16,7 @@
 //     follow the copy on their side of the cut;
 //   - the edge index (faces and constraints per edge) and the vertex normals.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,12 +63,25 @@ void index_mesh_edges(TissueWorld& world, std::uint32_t mesh);
 // (no spare particles left, or an index out of range). The caller keeps the mesh a manifold.
 TopologyChange apply_mesh_edit(TissueWorld& world, std::uint32_t mesh, const MeshEdit& edit);
 
+// Takes the triangles `triangles` (indices, any order) out of world.meshes[mesh]: a fragment the
+// cautery vaporises. Their edges' constraints are removed and those still bordering a triangle
+// rebuilt as boundary edges; the survivors keep their order and every index to them (edge index,
+// strand ends, visual bindings) is renumbered; a binding on a removed triangle moves to the
+// nearest point of a surviving one where they are now. Vertices left in no triangle are retired:
+// fixed (inverse mass 0) where they are, at rest, in no constraint, and the coupling pairs they
+// were the source of are dropped. Refused (the world unchanged) when a triangle does not exist,
+// every triangle would go, or a retired vertex is held by an instrument or is a coupling's
+// destination.
+TopologyChange remove_mesh_triangles(TissueWorld& world, std::uint32_t mesh,
+                                     std::span<const std::uint32_t> triangles);
+
 // The first broken invariant of a mesh object that changes topology, or "": the mesh checks
 // (indices, degenerate triangles by `options`' smallest area and angle on the rest positions,
-// manifold, every vertex used), the edge index matches the triangles, every edge has exactly its
-// distance constraint and every interior edge its dihedral with the right four particles, no
-// constraint, coupling or binding refers to a vertex or triangle that does not exist, eq. 5's
-// masses, finite values, and the solver's own checks (colouring, ranges).
+// manifold; a vertex in no triangle is retired: fixed and at rest), the edge index matches the
+// triangles, every edge has exactly its distance constraint and every interior edge its dihedral
+// with the right four particles, no constraint, coupling or binding refers to a vertex or triangle
+// that does not exist, eq. 5's masses, finite values, and the solver's own checks (colouring,
+// ranges).
 std::string first_topology_defect(TissueWorld& world, std::uint32_t mesh,
                                   const geometry::MeshCheckOptions& options);
 
