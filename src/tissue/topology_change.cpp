@@ -385,7 +385,7 @@ TopologyChange remove_mesh_triangles(TissueWorld& w, std::uint32_t mesh,
   }
   physics::Particles& P = w.state.particles;
   const std::uint32_t first = m.first_particle;
-  // Vertices left in no triangle are retired: they must carry no coupling, nor be held.
+  // Vertices left in no triangle are retired: none may be held or be a coupling's destination.
   std::vector<std::uint8_t> used(m.particle_count, 0);
   for (std::uint32_t f = 0; f < face_count; ++f) {
     if (!gone[f])
@@ -505,8 +505,8 @@ std::string first_topology_defect(TissueWorld& w, std::uint32_t mesh,
   const std::string where = m.name + ": ";
   const geometry::TriangleMesh rest = rest_mesh(w, m);
   geometry::MeshCheckOptions checks = options;
-  checks.require_used_vertices =
-      false;  // retired vertices (remove_mesh_triangles) are checked below
+  // Vertices in no triangle are retired ones (remove_mesh_triangles), checked below.
+  checks.require_used_vertices = false;
   if (std::string d = geometry::first_mesh_defect(rest, checks); !d.empty()) return where + d;
   std::vector<std::uint8_t> used(m.particle_count, 0);
   for (const Triangle& t : m.triangles)

@@ -67,10 +67,10 @@ TopologyChange apply_mesh_edit(TissueWorld& world, std::uint32_t mesh, const Mes
 // cautery vaporises. Their edges' constraints are removed and those still bordering a triangle
 // rebuilt as boundary edges; the survivors keep their order and every index to them (edge index,
 // strand ends, visual bindings) is renumbered; a binding on a removed triangle moves to the
-// nearest point of a surviving one where they are now. Vertices left in no triangle are retired:
-// fixed (inverse mass 0) where they are, at rest, in no constraint, and the coupling pairs they
-// were the source of are dropped. Refused (the world unchanged) when a triangle does not exist,
-// every triangle would go, or a retired vertex is held by an instrument or is a coupling's
+// nearest point of a surviving one, found where the mesh is now. Vertices left in no triangle are
+// retired: fixed (inverse mass 0) where they are, at rest, in no constraint, and the coupling pairs
+// they were the source of are dropped. Refused (the world unchanged) when a triangle does not
+// exist, every triangle would go, or a retired vertex is held by an instrument or is a coupling's
 // destination.
 TopologyChange remove_mesh_triangles(TissueWorld& world, std::uint32_t mesh,
                                      std::span<const std::uint32_t> triangles);
