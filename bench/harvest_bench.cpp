@@ -21,8 +21,8 @@ void BM_HarvestSecond(benchmark::State& bench) {
   constexpr int kStepsPerSecond = 200;
   for (auto _ : bench) {
     for (int k = 0; k < kStepsPerSecond; ++k) {
-      op.observe(devices::Hand::left, s.stations[0].pose.translation);
-      op.observe(devices::Hand::right, s.stations[1].pose.translation);
+      op.observe(devices::Hand::left, s.stations[0].pose);
+      op.observe(devices::Hand::right, s.stations[1].pose);
       op.poll(s.scene.patch.world.state.time, console);
       if (!session::step_session(s, console::to_session_input(console, s), exec).ok()) {
         bench.SkipWithError("step diverged");

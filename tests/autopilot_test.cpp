@@ -253,7 +253,8 @@ TEST(ScriptedOperator, CorrectsItsHandsForWhereItSeesTheInstrumentsGo) {
   const Vec3 held_back(0, 0, -0.003);
   devices::ConsoleInput in;
   for (int k = 0; k < 200; ++k) {
-    op.observe(devices::Hand::right, in.right.pose.translation + held_back);
+    op.observe(devices::Hand::right,
+               Pose{in.right.pose.rotation, in.right.pose.translation + held_back});
     op.poll(0.005 * k, in);
   }
   EXPECT_NEAR((in.right.pose.translation + held_back - plan.hook[0].tool.translation).norm(), 0,
@@ -262,10 +263,39 @@ TEST(ScriptedOperator, CorrectsItsHandsForWhereItSeesTheInstrumentsGo) {
   EXPECT_EQ(in.left.pose.translation, plan.forceps[0].tool.translation);
   // A tool that never moves (the heart stops it) is not pushed after by more than 10 mm.
   for (int k = 0; k < 400; ++k) {
-    op.observe(devices::Hand::right, Vec3(0.01, 0.02, 0.0));
+    op.observe(devices::Hand::right, Pose{Mat3::Identity(), Vec3(0.01, 0.02, 0.0)});
     op.poll(1 + 0.005 * k, in);
   }
   EXPECT_NEAR((in.right.pose.translation - plan.hook[0].tool.translation).norm(), 0.01, 1e-12);
+}
+
+TEST(ScriptedOperator, KeepsThePedalUpOnlyWhileTheHookIsPushedTowardsTheVessel) {
+  // The vessel runs along z through the origin; the plan holds the hook's hinge 5 mm beside it,
+  // its 8 mm electrode along z (tip 5 mm from the vessel), the pedal on cut throughout.
+  HarvestPlan plan;
+  plan.segment = {Vec3(0, 0, 0), Vec3(0, 0, 0.1)};
+  plan.electrode_length = Real(0.008);
+  plan.forceps = plan.hook = {ToolKey{0, Pose{}, 0}};
+  plan.hook[0].tool.translation = Vec3(0.005, 0, 0.05);
+  plan.pedal = {PedalKey{0, haptics::CauteryMode::cut, 30}};
+  plan.end_time = 10;
+  const auto pedal_when_seen_off_by = [&](const Vec3& held) {
+    ScriptedOperator op(plan, OperatorParams{.tremor = 0});
+    devices::ConsoleInput in;
+    op.poll(0, in);  // asks for the plan's pose
+    op.observe(devices::Hand::right, Pose{Mat3::Identity(), plan.hook[0].tool.translation + held});
+    op.poll(0.005, in);
+    return in.pedal;
+  };
+  using haptics::CauteryMode;
+  EXPECT_EQ(pedal_when_seen_off_by(Vec3::Zero()), CauteryMode::cut);
+  // Held 3 mm back away from the vessel (caught on what it divides): it cuts on.
+  EXPECT_EQ(pedal_when_seen_off_by(Vec3(0.003, 0, 0)), CauteryMode::cut);
+  EXPECT_EQ(pedal_when_seen_off_by(Vec3(0, 0.003, 0)), CauteryMode::cut);  // further, sideways
+  // Pushed 3 mm towards the vessel: the pedal goes up.
+  EXPECT_EQ(pedal_when_seen_off_by(Vec3(-0.003, 0, 0)), CauteryMode::off);
+  // Within 2.5 mm of its line the hook is where the operator sees it should be.
+  EXPECT_EQ(pedal_when_seen_off_by(Vec3(-0.002, 0, 0)), CauteryMode::cut);
 }
 
 TEST(HarvestPlan, RefusesParametersOutOfRange) {

@@ -40,8 +40,8 @@ RunAutopilot::RunAutopilot(const session::SurgicalSession& session,
 
 session::SessionInput RunAutopilot::next(const session::SurgicalSession& session) {
   // What the endoscope shows the operator: where its instruments are.
-  operator_.observe(devices::Hand::left, session.stations[0].pose.translation);
-  operator_.observe(devices::Hand::right, session.stations[1].pose.translation);
+  operator_.observe(devices::Hand::left, session.stations[0].pose);
+  operator_.observe(devices::Hand::right, session.stations[1].pose);
   operator_.poll(session.scene.patch.world.state.time, console_);
   return console::to_session_input(console_, session);
 }

@@ -9,7 +9,7 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
         surgery::EventKind::strand_cut, surgery::EventKind::cautery_on,
         surgery::EventKind::cautery_off, surgery::EventKind::contact_begin,
         surgery::EventKind::contact_end, surgery::EventKind::injury,
-        surgery::EventKind::cut_refused}) {
+        surgery::EventKind::cut_refused, surgery::EventKind::fragment_vaporised}) {
     events[surgery::to_string(kind)] = s.events.count(kind);
   }
   out["events"] = events;

@@ -89,6 +89,7 @@ class Planner {
     plan_.segment = frame.segment;
     plan_.heart_excursion = frame.heart_excursion;
     plan_.keep_out = keep_out_;
+    plan_.electrode_length = electrode;
   }
 
   HarvestPlan finish() {

@@ -51,6 +51,7 @@ struct HarvestPlan {
   std::vector<Vec3> segment;  // the harvested part of the IMA's centerline at rest (unit: m)
   Real heart_excursion = 0;   // largest heart motion under the segment over a beat (unit: m)
   Real keep_out = 0;          // distance kept from the heart's surface (unit: m)
+  Real electrode_length = 0;  // the hook's, hinge to tip (unit: m)
   double end_time = 0;        // (unit: s)
 };
 

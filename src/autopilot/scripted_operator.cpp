@@ -2,6 +2,9 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
+
+#include "geometry/closest_point.hpp"
 
 namespace imasim::autopilot {
 
@@ -38,17 +41,42 @@ constexpr Real kMaxCorrection = Real(0.01);  // (unit: m)
 // The correction grows by at most this a poll (20 mm/s at the 5 ms step): a tool released by
 // what held it back does not jump, and launch the tissue under it.
 constexpr Real kMaxCorrectionStep = Real(1e-4);  // (unit: m)
-// The operator keeps the pedal up while it sees its hook further than this from where it asked
-// for it (held back by tissue, stopped by the wall): an electrode is energised only where the
-// surgeon sees it, never where the tissue happened to push it.
+// The operator keeps the pedal up while it sees its hook's hinge further than this from where it
+// asked for it (held back by tissue, stopped by the wall) and the electrode's tip nearer the
+// vessel than it asked: an electrode is energised only where the surgeon sees it, never where
+// tissue pushed it towards the vessel. Held back away from the vessel, the hook is caught on the
+// fascia or fat it is dividing, and cutting frees it (with the pedal up it stayed caught there,
+// its sweep undone: patient 9 of the study, docs/autopilot.md).
 constexpr Real kOffLine = Real(0.0025);  // (unit: m)
+
+// Distance from the harvested segment's centerline (unit: m).
+Real distance_to_vessel(const std::vector<Vec3>& segment, const Vec3& p) {
+  Real best = std::numeric_limits<Real>::max();
+  for (std::size_t i = 1; i < segment.size(); ++i) {
+    const Vec3 &a = segment[i - 1], &b = segment[i];
+    const Real u = geometry::closest_segment_parameter(p, a, b);
+    best = std::min(best, (p - ((1 - u) * a + u * b)).norm());
+  }
+  return best;
+}
 
 }  // namespace
 
-void ScriptedOperator::observe(devices::Hand hand, const Vec3& hinge) {
+void ScriptedOperator::observe(devices::Hand hand, const Pose& instrument) {
   Servo& s = servo_[hand == devices::Hand::left ? 0 : 1];
-  s.observed = hinge;
+  s.observed = instrument;
   s.has_observed = true;
+}
+
+bool ScriptedOperator::hook_pushed_to_vessel() const {
+  const Servo& hook = servo_[1];
+  if (!hook.has_asked || !hook.has_observed) return false;
+  if (!((hook.asked.translation - hook.observed.translation).norm() > kOffLine)) return false;
+  // The tip as seen, and where it would be with the hinge where the hand asked (the shaft's
+  // direction as seen: the port sets it, not the hand).
+  const Vec3 along = plan_.electrode_length * hook.observed.rotation.col(2);
+  return distance_to_vessel(plan_.segment, hook.observed.translation + along) <
+         distance_to_vessel(plan_.segment, hook.asked.translation + along);
 }
 
 void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
@@ -58,13 +86,13 @@ void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
     hand.pose = k.tool;
     hand.pose.translation += tremor.at(now_s);
     if (servo.has_asked && servo.has_observed) {
-      Vec3 step = kServoGain * (servo.asked - servo.observed);
+      Vec3 step = kServoGain * (servo.asked.translation - servo.observed.translation);
       if (const Real n = step.norm(); n > kMaxCorrectionStep) step *= kMaxCorrectionStep / n;
       servo.correction += step;
       const Real n = servo.correction.norm();
       if (n > kMaxCorrection) servo.correction *= kMaxCorrection / n;
     }
-    servo.asked = hand.pose.translation;
+    servo.asked = hand.pose;
     servo.has_asked = true;
     servo.has_observed = false;
     hand.pose.translation += servo.correction;
@@ -75,9 +103,7 @@ void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {
     hand.clutch = false;
     hand.jaw = k.jaw;
   };
-  const Servo& hook = servo_[1];
-  const bool hook_off_line =
-      hook.has_asked && hook.has_observed && (hook.asked - hook.observed).norm() > kOffLine;
+  const bool hook_off_line = hook_pushed_to_vessel();
   drive(plan_.forceps, left_tremor_, servo_[0], input.left);
   drive(plan_.hook, right_tremor_, servo_[1], input.right);
   const auto after = std::upper_bound(plan_.pedal.begin(), plan_.pedal.end(), now_s,

@@ -28,8 +28,9 @@ class ScriptedOperator final : public devices::InputDevice {
   bool connected() const override { return true; }
   devices::DeviceInfo info() const override;
 
-  // Where an instrument's hinge is now (the scene frame; unit: m), for the next poll.
-  void observe(devices::Hand hand, const Vec3& hinge);
+  // Where an instrument is now (its hinge and axes in the scene frame; unit: m), for the next
+  // poll.
+  void observe(devices::Hand hand, const Pose& instrument);
 
   const HarvestPlan& plan() const { return plan_; }
   bool finished(double now_s) const { return now_s >= plan_.end_time; }
@@ -41,10 +42,11 @@ class ScriptedOperator final : public devices::InputDevice {
   // the correction) and what it observed since.
   struct Servo {
     Vec3 correction = Vec3::Zero();  // (unit: m)
-    Vec3 asked = Vec3::Zero();       // (unit: m)
-    Vec3 observed = Vec3::Zero();    // (unit: m)
+    Pose asked, observed;            // (unit: m)
     bool has_asked = false, has_observed = false;
   };
+  // Whether the hook is held off its line towards the vessel (the pedal then stays up).
+  bool hook_pushed_to_vessel() const;
   HarvestPlan plan_;
   Tremor left_tremor_, right_tremor_;
   std::array<Servo, 2> servo_{};

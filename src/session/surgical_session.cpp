@@ -220,6 +220,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   }
 
   // 3. Electrocautery.
+  bool freed = held == 0 && held_before > 0;  // whether a piece of fascia may have come free
   Station& hook = s.stations[1];
   const surgery::PedalMode pedal = input.right.pedal;
   if (pedal != hook.pedal) {
@@ -261,7 +262,10 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
                                    cut.new_vertices, s.cautery);
     tissue::anchor_new_vertices(s.scene.heart, w, s.cutter.mesh, cut.first_new_vertex,
                                 cut.new_vertices);
-    if (cut.edges_split + cut.vertices_copied > 0) surgery::stiffen_coagulated(w, s.cautery);
+    if (cut.edges_split + cut.vertices_copied > 0) {
+      surgery::stiffen_coagulated(w, s.cautery);
+      freed = true;
+    }
   }
   if (pedal == surgery::PedalMode::cut) {
     // eq. 10-12 with p at the electrode's tip, where it meets the strands: a strand that crosses
@@ -274,6 +278,17 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     if (strands > 0) {
       s.strands_cut += strands;
       s.events.add(time, EventKind::strand_cut, 1, Tissue::fat, strands);
+    }
+  }
+
+  // Pieces of fascia the cut or a release left free and small are vaporised.
+  if (freed) {
+    const surgery::FragmentRemoval gone =
+        surgery::vaporise_free_fragments(w, s.params.fragments, s.cutter);
+    if (gone.fragments > 0) {
+      s.fragments_vaporised += gone.fragments;
+      s.events.add(time, EventKind::fragment_vaporised, 1, Tissue::fascia, gone.triangles,
+                   gone.area);
     }
   }
 

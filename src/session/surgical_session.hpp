@@ -22,6 +22,7 @@
 #include "surgery/endoscope.hpp"
 #include "surgery/events.hpp"
 #include "surgery/fascia_cut.hpp"
+#include "surgery/fascia_fragments.hpp"
 #include "surgery/grasp.hpp"
 #include "surgery/input_script.hpp"
 #include "surgery/robotic_arm.hpp"
@@ -34,6 +35,7 @@ namespace imasim::session {
 struct SessionParams {
   surgery::GraspParams grasp;
   surgery::FasciaCutParams fascia_cut;
+  surgery::FragmentParams fragments;
   surgery::StrandCutParams strand_cut;
   surgery::CauteryParams cautery;
   surgery::ContactParams contact;
@@ -93,6 +95,7 @@ struct SurgicalSession {
   std::vector<surgery::StrandCut> strand_cuts;
   // Totals for reports.
   std::uint64_t fascia_edges_cut = 0, strands_cut = 0;
+  std::uint64_t fragments_vaporised = 0;  // small free pieces of fascia taken out after cuts
   // Warnings: tissue found inside an instrument after the step (the solve's contacts missed it),
   // cuts refused for want of spare vertices.
   std::uint64_t missed_tool_contacts = 0, refused_cuts = 0;

@@ -24,6 +24,8 @@ const char* to_string(EventKind kind) {
       return "injury";
     case EventKind::cut_refused:
       return "cut_refused";
+    case EventKind::fragment_vaporised:
+      return "fragment_vaporised";
   }
   return "unknown";
 }

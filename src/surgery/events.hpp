@@ -22,6 +22,8 @@ enum class EventKind : std::uint8_t {
   injury,         // heat on the IMA past its injury threshold; count = particles, value = the
                   // largest temperature rise (unit: K)
   cut_refused,    // a fascia cut not made: no spare vertices left (a warning, never silent)
+  fragment_vaporised,  // small free pieces of fascia taken out after a cut; count = triangles,
+                       // value = their rest area (unit: m^2)
 };
 
 enum class Tissue : std::uint8_t { none, fascia, ima, fat, heart, chest_wall };
