@@ -149,14 +149,13 @@ TEST(TopologyChange, RefusedRemovalsLeaveTheWorldAsItWas) {
 }
 
 // One mesh object of two pieces: a 4 cm sheet (5 x 5 vertices, its perimeter fixed) and beside
-// it a free square of side `side` (two triangles, vertices 25-28).
-tissue::TissueWorld sheet_and_square(Real side) {
+// it a free `piece` (its vertices from 25 on).
+tissue::TissueWorld sheet_and(const geometry::TriangleMesh& piece) {
   geometry::TriangleMesh mesh = geometry::make_grid_rectangle({0.04, 0.04, 5, 5});
-  const geometry::TriangleMesh square = geometry::make_grid_rectangle({side, side, 2, 2});
   const auto offset = static_cast<std::uint32_t>(mesh.vertices.size());
-  for (const Vec3& x : square.vertices)
+  for (const Vec3& x : piece.vertices)
     mesh.vertices.push_back(x + Vec3(0.05, 0, 0.01));
-  for (const Triangle& t : square.triangles)
+  for (const Triangle& t : piece.triangles)
     mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   tissue::TissueWorld w;
   tissue::MeshObjectParams p;
@@ -171,6 +170,11 @@ tissue::TissueWorld sheet_and_square(Real side) {
   }
   tissue::finish_setup(w);
   return w;
+}
+
+// The sheet and a free square of side `side` (two triangles, vertices 25-28).
+tissue::TissueWorld sheet_and_square(Real side) {
+  return sheet_and(geometry::make_grid_rectangle({side, side, 2, 2}));
 }
 
 TEST(FasciaFragments, ASmallFreePieceIsVaporisedAndTheSheetStays) {
@@ -245,6 +249,26 @@ TEST(FasciaFragments, WhatIsLargeFixedHeldOrDrivenStays) {
     EXPECT_EQ(pieces_taken(w, huge), 1u);
     EXPECT_EQ(w.meshes[0].triangles.size(), 32u);
   }
+}
+
+TEST(FasciaFragments, APieceHeldThroughAnyCornerOfItsTrianglesStays) {
+  // One 2 mm^2 triangle listed highest corner first, (27, 25, 26), held only by its second
+  // corner: a union-find that joined each corner to the first corner's root as found before the
+  // first join split corner 25 off, and took the triangle as free.
+  geometry::TriangleMesh triangle;
+  triangle.vertices = {Vec3(0, 0, 0), Vec3(0.002, 0, 0), Vec3(0, 0, 0.002)};
+  triangle.triangles = {{2, 0, 1}};
+  for (const std::uint32_t held_corner : {25u, 26u, 27u}) {
+    tissue::TissueWorld w = sheet_and(triangle);
+    w.state.particles.inverse_mass[held_corner] = 0;
+    FasciaCutter cutter = make_fascia_cutter(0);
+    EXPECT_EQ(vaporise_free_fragments(w, FragmentParams{}, cutter).fragments, 0u) << held_corner;
+    EXPECT_EQ(w.meshes[0].triangles.size(), 33u);
+  }
+  tissue::TissueWorld w = sheet_and(triangle);  // and free, it goes
+  FasciaCutter cutter = make_fascia_cutter(0);
+  EXPECT_EQ(vaporise_free_fragments(w, FragmentParams{}, cutter).fragments, 1u);
+  EXPECT_EQ(w.meshes[0].triangles.size(), 32u);
 }
 
 }  // namespace

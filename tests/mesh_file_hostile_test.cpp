@@ -23,7 +23,10 @@ void expect_refused(const std::filesystem::path& path, const std::string& expect
   } catch (const MeshFileError& e) {
     EXPECT_EQ(std::string(e.what()), path.string() + ": " + expected);
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  // A hang guard, not a benchmark: what it guards against (a search or a parse that grows with
+  // the hostile input) takes minutes, so the bound stays far from the sanitizers' and a loaded
+  // machine's slowdown (1.1 s once under ASan beside a build).
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
 }
 
 const char* const kTetrahedronObj =

@@ -15,7 +15,7 @@
 namespace imasim::scene {
 namespace {
 
-// The messages of parsing `text`, failing the test if it is accepted or takes over a second.
+// The messages of parsing `text`, failing the test if it is accepted or hangs (see below).
 std::vector<std::string> refused(const std::string& text) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> messages;
@@ -25,7 +25,10 @@ std::vector<std::string> refused(const std::string& text) {
   } catch (const SceneFileError& e) {
     messages = e.messages();
   }
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  // A hang guard, not a benchmark: what it guards against (a search or a parse that grows with
+  // the hostile input) takes minutes, so the bound stays far from the sanitizers' and a loaded
+  // machine's slowdown (1.1 s once under ASan beside a build).
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
   return messages;
 }
 

@@ -29,9 +29,9 @@ FragmentRemoval vaporise_free_fragments(tissue::TissueWorld& w, const FragmentPa
   std::vector<std::uint32_t> parent(n);
   std::iota(parent.begin(), parent.end(), 0u);
   for (const geometry::Triangle& t : m.triangles) {
-    const std::uint32_t a = root_of(parent, t[0]);
     for (int k = 1; k < 3; ++k) {
-      const std::uint32_t b = root_of(parent, t[k]);
+      // Both roots afresh for each corner: the first union may have made t[0]'s root a child.
+      const std::uint32_t a = root_of(parent, t[0]), b = root_of(parent, t[k]);
       if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lower index is the root
     }
   }

@@ -8,8 +8,8 @@
 // coupling; small when its rest area is at most `max_area`. The largest piece (the sheet) always
 // stays. Strands do not hold a piece: their ends follow the surface they are bound to and pull
 // nothing (tissue_world.hpp); a strand ending on a removed piece keeps its end on the nearest
-// point of the sheet. The surgical session does not call it yet (docs/surgery.md: it changes the
-// scripted operator's study).
+// point of the sheet. The surgical session calls it after each step that cut the fascia or
+// released the forceps (docs/surgery.md).
 #include <cstdint>
 
 #include "surgery/fascia_cut.hpp"
