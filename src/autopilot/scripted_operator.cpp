@@ -2,9 +2,8 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <limits>
 
-#include "geometry/closest_point.hpp"
+#include "autopilot/working_frame.hpp"
 
 namespace imasim::autopilot {
 
@@ -49,17 +48,6 @@ constexpr Real kMaxCorrectionStep = Real(1e-4);  // (unit: m)
 // its sweep undone: patient 9 of the study, docs/autopilot.md).
 constexpr Real kOffLine = Real(0.0025);  // (unit: m)
 
-// Distance from the harvested segment's centerline (unit: m).
-Real distance_to_vessel(const std::vector<Vec3>& segment, const Vec3& p) {
-  Real best = std::numeric_limits<Real>::max();
-  for (std::size_t i = 1; i < segment.size(); ++i) {
-    const Vec3 &a = segment[i - 1], &b = segment[i];
-    const Real u = geometry::closest_segment_parameter(p, a, b);
-    best = std::min(best, (p - ((1 - u) * a + u * b)).norm());
-  }
-  return best;
-}
-
 }  // namespace
 
 void ScriptedOperator::observe(devices::Hand hand, const Pose& instrument) {
@@ -75,8 +63,8 @@ bool ScriptedOperator::hook_pushed_to_vessel() const {
   // The tip as seen, and where it would be with the hinge where the hand asked (the shaft's
   // direction as seen: the port sets it, not the hand).
   const Vec3 along = plan_.electrode_length * hook.observed.rotation.col(2);
-  return distance_to_vessel(plan_.segment, hook.observed.translation + along) <
-         distance_to_vessel(plan_.segment, hook.asked.translation + along);
+  return distance_to_segment(hook.observed.translation + along, plan_.segment) <
+         distance_to_segment(hook.asked.translation + along, plan_.segment);
 }
 
 void ScriptedOperator::poll(double now_s, devices::ConsoleInput& input) {

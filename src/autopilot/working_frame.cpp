@@ -36,15 +36,6 @@ Vec3 along(const std::vector<Vec3>& line, const std::vector<Real>& arc, Real s) 
   return (1 - u) * line[i - 1] + u * line[i];
 }
 
-Real distance_to_segment(const Vec3& p, const std::vector<Vec3>& line) {
-  Real best = std::numeric_limits<Real>::infinity();
-  for (std::size_t i = 1; i < line.size(); ++i) {
-    const Real u = geometry::closest_segment_parameter(p, line[i - 1], line[i]);
-    best = std::min(best, (p - ((1 - u) * line[i - 1] + u * line[i])).norm());
-  }
-  return best;
-}
-
 Real heart_excursion(const session::SurgicalSession& s, const std::vector<Vec3>& segment) {
   const tissue::HeartField& heart = s.scene.heart;
   if (!heart.playback.beating) return 0;
@@ -137,6 +128,15 @@ WorkingFrame make_working_frame(const session::SurgicalSession& s, Real segment_
   f.hook_start = s.stations[1].pose;
   f.hook_arm = s.stations[1].arm;
   return f;
+}
+
+Real distance_to_segment(const Vec3& p, const std::vector<Vec3>& line) {
+  Real best = std::numeric_limits<Real>::infinity();
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    const Real u = geometry::closest_segment_parameter(p, line[i - 1], line[i]);
+    best = std::min(best, (p - ((1 - u) * line[i - 1] + u * line[i])).norm());
+  }
+  return best;
 }
 
 }  // namespace imasim::autopilot

@@ -34,6 +34,9 @@ struct WorkingFrame {
   Real heart_distance(const Vec3& p) const;
 };
 
+// Distance from a polyline (unit: m); infinite for fewer than two points.
+Real distance_to_segment(const Vec3& p, const std::vector<Vec3>& line);
+
 // Throws std::invalid_argument when the IMA is shorter than `segment_length`.
 WorkingFrame make_working_frame(const session::SurgicalSession& session, Real segment_length);
 
