@@ -17,10 +17,11 @@
 namespace imasim::surgery {
 
 struct FragmentParams {
-  // Largest free piece vaporised, by rest area (unit: m^2). 6 mm^2 is less than one of the
-  // default fascia's grid triangles (7 mm^2): the slivers a cut frees are pieces of triangles it
-  // divided (0.09-4.3 mm^2 in the example session).
-  Real max_area = Real(6e-6);
+  // Largest free piece vaporised, by rest area (unit: m^2): the electrode's omega x omega
+  // cutting square (eq. 12, omega = 4 mm), the most the energised tip covers at once. The slivers
+  // a cut frees are pieces of triangles it divided (0.09-4.3 mm^2 in the example session); a
+  // harvest also frees pieces of two or three of the default grid's 7 mm^2 triangles.
+  Real max_area = Real(16e-6);
 };
 
 struct FragmentRemoval {
