@@ -150,26 +150,29 @@ TEST(RunDevices, AnEmulatedSessionReplaysToTheSameStateHash) {
   const std::string stream = ::testing::TempDir() + "imasim_devices.stream";
   const Finished live =
       run("run --headless --devices emulator --script " + std::string(IMASIM_SOURCE_DIR) +
-          "/examples/open_fascia.script --seconds 1.5 --threads 1 --record-input " + stream +
+          "/examples/open_fascia.script --seconds 2.5 --threads 1 --record-input " + stream +
           " --json");
   ASSERT_EQ(live.exit_code, 0) << live.err;
   const auto a = nlohmann::json::parse(live.out);
   EXPECT_EQ(a["status"], "ok");
   EXPECT_EQ(a["input"], "emulator");
-  EXPECT_EQ(a["steps"], 300);
+  EXPECT_EQ(a["steps"], 500);
   const auto& d = a["devices"];
   EXPECT_NEAR(d["haptic_loop"]["rate_hz"].get<double>(), 1000, 50);
-  EXPECT_GT(d["models_rendered"].get<int>(), 250);  // the loop saw the steps' models
+  EXPECT_GT(d["models_rendered"].get<int>(), 420);  // the loop saw the steps' models
   EXPECT_LE(d["force_max_n"].get<double>(), 3.3 + 1e-9);
   EXPECT_EQ(d["safety"]["left"]["non_finite"], 0);
-  // The instruments followed the devices: the hook reached the fascia and cut it.
+  // The instruments followed the devices: the hook reached the fascia and cut it. The emulated
+  // hands run in real time, so when the cut begins varies with the machine's load: the hook
+  // passes the fascia from 0.5 s, and 2.5 s leave it a second of cutting (4-400 edges by 1.5 s
+  // on a loaded machine, 300-430 by 2.5 s).
   EXPECT_GT(a["fascia_edges_cut"].get<int>(), 0);
 
   const Finished replay = run("run --headless --replay " + stream + " --threads 2 --json");
   ASSERT_EQ(replay.exit_code, 0) << replay.err;
   const auto b = nlohmann::json::parse(replay.out);
   EXPECT_EQ(b["input"], "replay");
-  EXPECT_EQ(b["steps"], 300);
+  EXPECT_EQ(b["steps"], 500);
   EXPECT_EQ(b["state_hash"], a["state_hash"]);
   EXPECT_EQ(b["fascia_edges_cut"], a["fascia_edges_cut"]);
 }

@@ -1,7 +1,8 @@
 // The tool proxy (virtual coupling, surgery/tool_proxy.hpp): a device pressed into a membrane
-// leaves the proxy on the tissue's surface where the tissue's reaction balances the coupling
-// spring, so eq. 17's force k_d d (d the device's depth past the proxy) is the force the tissue
-// pushes back with; releasing returns it to zero; the force stays bounded however deep the hand.
+// leaves the proxy, a body inside the solve, on the tissue's surface where the tissue's reaction
+// balances the coupling spring, so eq. 17's force k_d d (d the device's depth past the proxy) is
+// the force the tissue pushes back with; releasing returns it to zero; the held tissue's pull
+// moves the spring's rest without swinging; the force stays bounded however deep the hand.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -32,9 +33,11 @@ struct PressRig {
   ProxyParams params;
   ProxyState proxy;
   Vec3 previous_probe = Vec3::Zero();
+  Vec3 normal_force = Vec3::Zero();  // the contacts' normal impulses alone, over the last step
   physics::Executor exec{1};
 
   PressRig() {
+    world.state.proxies.assign(1, physics::ProxyBody{});
     world.model.solver = tissue::default_solver();
     tissue::FasciaParams f = tissue::default_fascia_params();
     f.object.gravity = false;
@@ -75,13 +78,17 @@ struct PressRig {
     world.state.contacts.clear();
     gather_tool_contacts(world.state.particles, tool, before, now, ContactParams{}, dt, kTag,
                          world.state.contacts);
+    prepare_proxy_body(params, proxy, world.state.contacts.rows, 0,
+                       world.state.particles.object.data(), object_tissue.data(),
+                       object_tissue.size(), world.state.proxies[0]);
     ASSERT_TRUE(tissue::step_tissue(world, exec).ok());
     Tissue pressed = Tissue::none;
-    const Vec3 force =
+    normal_force =
         tissue_force_on_tool(world.state.contacts, world.state.particles.object.data(),
                              object_tissue.data(), object_tissue.size(), kTag, dt, pressed);
-    update_proxy(params, force, pressed, proxy);
-    previous_probe = at;
+    finish_proxy_step(params, world.state.proxies[0], dt, pressed, Vec3::Zero(), Tissue::none,
+                      proxy);
+    previous_probe = at + world.state.proxies[0].carried();  // where the solve left the tool
   }
 
   // Closest distance from the probe's centre to the membrane's particles.
@@ -107,18 +114,25 @@ TEST(ToolProxy, PressingFiveMillimetresRestsOnTheSurfaceWithEquationSeventeensFo
   EXPECT_LT(p.offset.y(), 0.005);
   // The proxy rests on the surface: the membrane touches the ball (radius + the contact margin).
   EXPECT_NEAR(rig.clearance(device), kProbeRadius + ContactParams{}.margin, 0.0003);
-  // Eq. 17 with d = the device's depth past the proxy along the normal, at rest (v_n = 0), is
-  // the force the tissue pushes back with (the proxy is at its balance).
+  // At its balance the coupling carries all the tissue puts on the tool: k o = F.
   const haptics::ContactForceParams fascia =
       haptics::default_force_model_params().of(haptics::TissueKind::fascia);
+  const Real force = p.tissue_force.norm();
+  EXPECT_LT((p.tissue_force - fascia.stiffness * p.offset).norm(), 0.03 * force);
+  // Eq. 17 with d = the device's depth past the proxy along that force, at rest (v_n = 0), is
+  // the force the tissue pushes back with.
   haptics::ContactKinematics contact;
-  contact.normal = Vec3::UnitY();
+  contact.normal = p.tissue_force / force;
   contact.depth = p.offset.dot(contact.normal);
   const haptics::ForceChannels f = haptics::contact_force(fascia, nullptr, 0, contact);
   EXPECT_NEAR(f.normal_n, fascia.stiffness * contact.depth, 1e-12);
-  EXPECT_NEAR(f.normal_n, p.tissue_force.norm(), 0.03 * p.tissue_force.norm());
-  EXPECT_NEAR(p.tissue_force.x(), 0, 0.02 * p.tissue_force.norm());
-  EXPECT_NEAR(p.tissue_force.z(), 0, 0.02 * p.tissue_force.norm());
+  EXPECT_NEAR(f.normal_n, force, 0.03 * force);
+  // The contacts' normal push is along +y; the membrane wrapped on the ball holds some friction
+  // (static, locked in as it was pressed), inside the Coulomb cone mu_s of the normal push.
+  const Real normal = rig.normal_force.norm();
+  EXPECT_NEAR(rig.normal_force.x(), 0, 0.02 * normal);
+  EXPECT_NEAR(rig.normal_force.z(), 0, 0.02 * normal);
+  EXPECT_LE((p.tissue_force - rig.normal_force).norm(), ContactParams{}.static_friction * normal);
 
   // Released: the device lifted 10 mm clear; the force and the offset return to zero.
   const Vec3 lifted = rig.centre + Vec3(0, Real(0.01) + kProbeRadius, 0);
@@ -141,46 +155,56 @@ TEST(ToolProxy, StiffnessOfTheCouplingSetsTheIndentation) {
     rig.press(device, 800);
     force[s] = rig.proxy.tissue_force.norm();
     depth[s] = Real(0.012) - rig.proxy.offset.y();
-    EXPECT_NEAR(force[s], rig.params.stiffness[1] * rig.proxy.offset.y(), 0.03 * force[s]);
+    const Real k = rig.params.stiffness[std::size_t(Tissue::fascia)];
+    EXPECT_LT((rig.proxy.tissue_force - k * rig.proxy.offset).norm(), 0.03 * force[s]);
   }
   EXPECT_GT(force[1], 1.2 * force[0]);
   EXPECT_GT(depth[1], depth[0] + 0.0002);
 }
 
-TEST(ToolProxy, BalanceRelaxationAndBound) {
+TEST(ToolProxy, TheHeldPullMovesTheRestTowardItsBalanceWithinTheBound) {
   ProxyParams params;
   ProxyState state;
   const Real k = params.stiffness[std::size_t(Tissue::ima)];
-  // A steady 1 N along +z: the offset approaches 1 N / k, halving the gap each step.
+  // A steady 1 N pull along +z: o_rest approaches 1 N / k, halving the gap each step.
   for (int n = 1; n <= 40; ++n) {
-    update_proxy(params, Vec3(0, 0, 1), Tissue::ima, state);
-    EXPECT_NEAR(state.offset.z(), (1 - std::pow(0.5, n)) / k, 1e-12) << n;
+    relax_held_pull(params, Vec3(0, 0, 1), Tissue::ima, state);
+    EXPECT_NEAR(state.rest.z(), (1 - std::pow(0.5, n)) / k, 1e-12) << n;
   }
-  // However hard the tissue pushes, the proxy stays within max_offset of the device.
+  // However hard the tissue pulls, the rest stays within max_offset of the device.
   for (int n = 0; n < 40; ++n)
-    update_proxy(params, Vec3(1e6, 0, 0), Tissue::ima, state);
-  EXPECT_NEAR(state.offset.norm(), params.max_offset, 1e-12);
-  // A non-finite force is no force.
-  update_proxy(params, Vec3(NAN, 0, 0), Tissue::ima, state);
-  EXPECT_EQ(state.tissue_force, Vec3::Zero());
-  EXPECT_TRUE(state.offset.allFinite());
+    relax_held_pull(params, Vec3(1e6, 0, 0), Tissue::ima, state);
+  EXPECT_NEAR(state.rest.norm(), params.max_offset, 1e-12);
+  // A non-finite pull is no pull.
+  relax_held_pull(params, Vec3(NAN, 0, 0), Tissue::ima, state);
+  EXPECT_EQ(state.pull, Vec3::Zero());
+  EXPECT_TRUE(state.rest.allFinite());
+  // After a step the tool feels the contacts and the pull, and the pressed tissue is the larger's.
+  physics::ProxyBody body;
+  body.offset = Vec3(0, 0.001, 0);
+  body.impulse = Vec3(0, 0.0005, 0);  // 0.1 N over a 5 ms step
+  ProxyState after;
+  finish_proxy_step(params, body, 0.005, Tissue::fascia, Vec3(0, 0, -0.3), Tissue::ima, after);
+  EXPECT_EQ(after.offset, body.offset);
+  EXPECT_NEAR((after.tissue_force - Vec3(0, 0.1, -0.3)).norm(), 0, 1e-15);
+  EXPECT_EQ(after.pressed, Tissue::ima);
 }
 
-TEST(ToolProxy, AgainstTissueFarStifferThanTheCouplingTheProxySettlesInsteadOfSwinging) {
-  // Tissue of local stiffness k_t = 20 k pushing with F = F0 - k_t o (o the offset along z): the
+TEST(ToolProxy, AgainstHeldTissueFarStifferThanTheCouplingTheRestSettlesInsteadOfSwinging) {
+  // Held tissue of local stiffness k_t = 20 k pulling with F = F0 - k_t o_rest (along z): the
   // balance is o* = F0 / (k + k_t). A fixed relaxation of 0.5 multiplies the error by
-  // 1 - 0.5 (1 + 20) = -9.5 a step and swings the proxy from bound to bound; the secant estimate
-  // of k_t brings the step down to k / (k + k_t) and the proxy settles on o*.
+  // 1 - 0.5 (1 + 20) = -9.5 a step and swings the rest from bound to bound; the secant estimate
+  // of k_t brings the step down to k / (k + k_t) and the rest settles on o*.
   ProxyParams params;
   ProxyState state;
   const Real k = params.stiffness[std::size_t(Tissue::ima)], k_t = 20 * k, f0 = 1;
   const Real balance = f0 / (k + k_t);
   Real largest = 0;
   for (int n = 0; n < 60; ++n) {
-    update_proxy(params, Vec3(0, 0, f0 - k_t * state.offset.z()), Tissue::ima, state);
-    largest = std::max(largest, state.offset.norm());
+    relax_held_pull(params, Vec3(0, 0, f0 - k_t * state.rest.z()), Tissue::ima, state);
+    largest = std::max(largest, state.rest.norm());
   }
-  EXPECT_NEAR(state.offset.z(), balance, 1e-6 * balance);
+  EXPECT_NEAR(state.rest.z(), balance, 1e-6 * balance);
   EXPECT_LT(largest, params.max_offset);  // never thrown to the bound
   // With the fixed relaxation (no memory of k_t: the estimate forgotten each step) it swings.
   ProxyState fixed;
@@ -189,8 +213,8 @@ TEST(ToolProxy, AgainstTissueFarStifferThanTheCouplingTheProxySettlesInsteadOfSw
   Real swing = 0;
   for (int n = 0; n < 60; ++n) {
     fixed.last_change = Vec3::Zero();  // no secant: the relaxation stays at 0.5
-    update_proxy(forgetful, Vec3(0, 0, f0 - k_t * fixed.offset.z()), Tissue::ima, fixed);
-    swing = std::max(swing, fixed.offset.norm());
+    relax_held_pull(forgetful, Vec3(0, 0, f0 - k_t * fixed.rest.z()), Tissue::ima, fixed);
+    swing = std::max(swing, fixed.rest.norm());
   }
   EXPECT_NEAR(swing, params.max_offset, 1e-12);
 }
@@ -210,7 +234,7 @@ TEST(ToolProxy, ForceOnTheToolIsTheOppositeOfTheContactsImpulsesPerStep) {
   EXPECT_EQ(pressed, Tissue::ima);  // the larger impulse
 }
 
-TEST(ToolProxy, CouplingStiffnessDefaultsAreTheForceLawsStiffness) {
+TEST(ToolProxy, CouplingDefaultsAreTheForceLawsSpringAndDamper) {
   const ProxyParams params;
   const haptics::ForceModelParams law = haptics::default_force_model_params();
   const std::pair<Tissue, haptics::TissueKind> pairs[] = {
@@ -219,8 +243,10 @@ TEST(ToolProxy, CouplingStiffnessDefaultsAreTheForceLawsStiffness) {
       {Tissue::fat, haptics::TissueKind::fat},
       {Tissue::heart, haptics::TissueKind::heart},
       {Tissue::chest_wall, haptics::TissueKind::chest_wall}};
-  for (const auto& [tissue, kind] : pairs)
+  for (const auto& [tissue, kind] : pairs) {
     EXPECT_EQ(params.stiffness[std::size_t(tissue)], law.of(kind).stiffness);
+    EXPECT_EQ(params.damping[std::size_t(tissue)], law.of(kind).damping);
+  }
 }
 
 }  // namespace

@@ -9,11 +9,14 @@
 // with Coulomb friction in positional form (Mueller et al. 2020) against the surface's motion
 // in that substep: the slip is removed while it is below mu_s times the normal correction, else
 // reduced by mu_k times it. A contact of a coarse object (ObjectParams::coarse) is projected in
-// that object's substeps only.
+// that object's substeps only. A row that names a proxy body (physics/proxy_body.hpp) is a
+// two-body contact: the plane moves with the body's offset as well, and each correction, normal
+// and tangential, is shared between particle and body by their inverse masses.
 #include <cstdint>
 #include <vector>
 
 #include "math/types.hpp"
+#include "physics/proxy_body.hpp"
 
 namespace imasim::physics {
 
@@ -24,6 +27,7 @@ struct ContactRow {
   Vec3 normal = Vec3::Zero();  // outward unit normal: the particle stays on its + side
   Real margin = 0;             // kept between surface and particle (unit: m)
   Real static_friction = 0, kinetic_friction = 0;  // mu_s, mu_k
+  std::uint32_t body = kNoBody;  // the proxy body the surface belongs to, or none (kinematic)
   // Results of the step: the deepest penetration corrected in its last substep and the normal
   // impulse over the step (sum of m dn / h; / dt gives the mean force).
   Real depth = 0;           // (unit: m)
@@ -39,8 +43,9 @@ struct ContactSet {
   std::size_t touching(std::uint32_t first_tag, std::uint32_t end_tag) const;
 };
 
-// One projection (see above). x_start: positions at the substep's start; tau0, tau1: the
-// substep's start and end as fractions of the step; h: the substep's length (unit: s).
+// One projection (see above) against a kinematic surface. x_start: positions at the substep's
+// start; tau0, tau1: the substep's start and end as fractions of the step; h: the substep's
+// length (unit: s).
 inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const Real* w, Real tau0,
                             Real tau1, Real h) {
   const Real wi = w[c.particle];
@@ -66,6 +71,47 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
   }
 }
 
+// The same against a proxy body's surface: the plane is carried by the body's offset since the
+// step began, and the particle (inverse mass w_i) and the body (w_b, proxy_inverse_mass) share
+// each correction: the particle takes w_i / (w_i + w_b) of it, the body the rest, the other way.
+// The friction bound compares the tangential and normal corrections before sharing, so it is the
+// same Coulomb cone as against a kinematic surface.
+// body_start: the body's offset at the substep's start.
+inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const Real* w,
+                            ProxyBody& body, const Vec3& body_start, Real tau0, Real tau1, Real h) {
+  const Real wi = w[c.particle];
+  if (wi == 0) return;
+  const Real wb = proxy_inverse_mass(body, h);
+  Vec3& x = p[c.particle];
+  const Vec3 motion = c.point1 - c.point0;
+  const Vec3 q = c.point0 + tau1 * motion + body.carried();
+  const Real gap = c.normal.dot(x - q) - c.margin;
+  if (!(gap < 0)) return;
+  const Real share = wi / (wi + wb);  // the particle's part of each correction
+  const Real dn = -gap;               // the whole normal correction
+  x += (share * dn) * c.normal;
+  const Vec3 pushed = ((1 - share) * dn) * c.normal;
+  body.offset -= pushed;
+  body.impulse -= body.damping * pushed;
+  c.depth = dn > c.depth ? dn : c.depth;
+  c.normal_impulse += share * dn / (wi * h);
+  // Slip relative to the surface over this substep (its path and the body's own motion).
+  const Vec3 surface = (tau1 - tau0) * motion + (body.offset - body_start);
+  const Vec3 slip = (x - x_start[c.particle]) - surface;
+  const Vec3 slip_t = slip - slip.dot(c.normal) * c.normal;
+  const Real s = slip_t.norm();
+  Vec3 removed = Vec3::Zero();
+  if (s < c.static_friction * dn) {
+    removed = slip_t;
+  } else if (s > 0) {
+    const Real reduce = c.kinetic_friction * dn / s;
+    removed = (reduce < 1 ? reduce : Real(1)) * slip_t;
+  }
+  x -= share * removed;
+  body.offset += (1 - share) * removed;
+  body.impulse += body.damping * (1 - share) * removed;
+}
+
 // After the velocity update of a substep in which the contact pushed its particle out (depth >
 // 0): the push resolved a penetration and must not also launch the particle. Its normal velocity
 // relative to the surface is kept at or below zero (an inelastic contact, restitution 0, as the
@@ -73,9 +119,12 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
 // particle at a step's start sends it off at D / h, a speed that grows as the substeps shrink
 // (measured: the resting default scene gained energy above about 200 substeps and diverged at
 // 400). inverse_dt: 1 / the step (the surface moves from point0 to point1 over it) (unit: 1/s).
-inline void remove_separating_velocity(const ContactRow& c, Vec3* v, Real inverse_dt) {
+// A body's surface moves with its offset too: `body_velocity` is that motion's rate over the
+// substep (zero for a kinematic surface) (unit: m/s).
+inline void remove_separating_velocity(const ContactRow& c, Vec3* v, Real inverse_dt,
+                                       const Vec3& body_velocity = Vec3::Zero()) {
   if (!(c.depth > 0)) return;
-  const Vec3 surface_velocity = (c.point1 - c.point0) * inverse_dt;
+  const Vec3 surface_velocity = (c.point1 - c.point0) * inverse_dt + body_velocity;
   const Real separating = c.normal.dot(v[c.particle] - surface_velocity);
   if (separating > 0) v[c.particle] -= separating * c.normal;
 }

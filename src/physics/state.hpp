@@ -9,6 +9,7 @@
 #include "physics/follow.hpp"
 #include "physics/model.hpp"
 #include "physics/particles.hpp"
+#include "physics/proxy_body.hpp"
 
 namespace imasim::physics {
 
@@ -40,6 +41,8 @@ struct State {
   Particles particles;
   ConstraintSystem constraints;
   ContactSet contacts;  // gathered before each step by the surfaces' owners, projected in it
+  // The instruments' proxies (proxy_body.hpp), named by contact rows; set by their owner.
+  std::vector<ProxyBody> proxies;
   // With SolverParams::bending_stride > 1, a fine particle's stored velocity is its mean over
   // the step's last bending group (stride substeps): the velocity of the last substep alone
   // carries the strided bending's impulse in the substep that applies it, a saw-tooth of about

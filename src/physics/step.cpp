@@ -206,10 +206,27 @@ std::span<Row> band_rows(std::vector<Row>& rows, std::size_t split, std::uint32_
 
 // The contacts of one band, in order. Positions hold the substep's start until
 // update_velocities, so they are the friction's reference.
+// A row naming a proxy body shares its corrections with it (contact.hpp), against the body's
+// offset at the band's substep start.
 void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Real h) {
   Particles& P = state.particles;
-  for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
-    project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), tau0, tau1, h);
+  for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
+    if (c.body == kNoBody) {
+      project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), tau0, tau1,
+                      h);
+      continue;
+    }
+    IMASIM_ASSERT(c.body < state.proxies.size());
+    ProxyBody& b = state.proxies[c.body];
+    project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), b,
+                    band == 0 ? b.substep_start : b.coarse_start, tau0, tau1, h);
+  }
+}
+
+// The proxies' couplings to their devices, after each iteration's contacts (fine substep h).
+void project_proxy_couplings(State& state, Real h) {
+  for (ProxyBody& b : state.proxies)
+    project_proxy_coupling(b, h);
 }
 
 // The follow rows whose destination is in `band`, in order.
@@ -222,10 +239,18 @@ void project_follows(State& state, std::uint32_t band) {
   }
 }
 
-void remove_separating_velocities(State& state, std::uint32_t band, Real inverse_dt) {
+// h: the band's substep; a body's surface moved with its offset over it as well.
+void remove_separating_velocities(State& state, std::uint32_t band, Real inverse_dt, Real h) {
   Vec3* v = state.particles.velocity.data();
-  for (const ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
-    remove_separating_velocity(c, v, inverse_dt);
+  for (const ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
+    if (c.body == kNoBody) {
+      remove_separating_velocity(c, v, inverse_dt);
+      continue;
+    }
+    const ProxyBody& b = state.proxies[c.body];
+    const Vec3& start = band == 0 ? b.substep_start : b.coarse_start;
+    remove_separating_velocity(c, v, inverse_dt, (b.offset - start) / h);
+  }
 }
 
 void reset_contact_depths(State& state, std::uint32_t band) {
@@ -311,6 +336,11 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   order_rows_by_band(model, state);
   for (ContactRow& c : state.contacts.rows)
     c.normal_impulse = 0;
+  for (ProxyBody& b : state.proxies) {
+    keep_proxy_finite(b);
+    b.step_start = b.coarse_start = b.offset;
+    b.impulse = Vec3::Zero();
+  }
   const ProjectionContext fine{P.predicted.data(), P.inverse_mass.data(),
                                scratch.projection_terms.data()};
   const ProjectionContext coarse{P.predicted.data(), P.inverse_mass.data(),
@@ -337,6 +367,10 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       profile[Stage::predict] += clock.lap();
       ConstraintSystem& cs = state.constraints;
       cs.reset_lambda(0);
+      for (ProxyBody& b : state.proxies) {
+        b.substep_start = b.offset;
+        b.lambda = Vec3::Zero();
+      }
       reset_contact_depths(state, 0);
       if (plan.coarse_active) {
         cs.reset_lambda(1);
@@ -356,6 +390,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
           project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h);
           profile[Stage::contacts] += clock.lap();
         }
+        project_proxy_couplings(state, plan.fine_h);
       }
       const std::uint32_t bad = update_velocities(model, state, plan, exec);
       if (bad != kInvalidIndex) {
@@ -364,8 +399,12 @@ StepResult step(const Model& model, State& state, Executor& exec) {
         result.substep = s;
         return;
       }
-      remove_separating_velocities(state, 0, 1 / solver.dt);
-      if (plan.coarse_active) remove_separating_velocities(state, 1, 1 / solver.dt);
+      remove_separating_velocities(state, 0, 1 / solver.dt, plan.fine_h);
+      if (plan.coarse_active) {
+        remove_separating_velocities(state, 1, 1 / solver.dt, plan.coarse_h);
+        for (ProxyBody& b : state.proxies)
+          b.coarse_start = b.offset;
+      }
       for (std::size_t o = 0; o < model.objects.size(); ++o) {
         const ObjectParams& object = model.objects[o];
         if (plan.active(object)) apply_angular_damping(model, state, o, plan.h(object));
@@ -404,6 +443,8 @@ StepResult step(const Model& model, State& state, Executor& exec) {
               P.position.begin());
     std::copy(scratch.saved_velocity.begin(), scratch.saved_velocity.begin() + P.size(),
               P.velocity.begin());
+    for (ProxyBody& b : state.proxies)
+      b.offset = b.step_start;
     return result;
   }
   state.time += double(solver.dt);

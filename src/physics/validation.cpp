@@ -101,8 +101,17 @@ std::string validate_state(const Model& model, State& state) {
   if (!error.empty()) return error;
   for (const ContactRow& c : state.contacts.rows) {
     if (c.particle >= state.particles.size()) return "a contact refers to a missing particle";
+    if (c.body != kNoBody && c.body >= state.proxies.size()) {
+      return "a contact refers to a missing proxy body";
+    }
     if (!c.point0.allFinite() || !c.point1.allFinite() || !c.normal.allFinite()) {
       return "a contact's surface is not finite";
+    }
+  }
+  for (const ProxyBody& b : state.proxies) {
+    if (!b.offset.allFinite() || !b.rest.allFinite() || !std::isfinite(b.stiffness) ||
+        !std::isfinite(b.damping) || !(b.max_offset >= 0)) {
+      return "a proxy body is not finite";
     }
   }
   for (const FollowRow& f : state.follows) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 #include <stdexcept>
 
 #include "math/stopwatch.hpp"
@@ -37,6 +38,7 @@ Mat3 frame_along(const Vec3& f) {
 
 void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput& in) {
   st.previous_pose = st.pose;
+  st.previous_pose.translation += st.carried;
   st.previous_controller = st.state.controller;
   switch (in.source) {
     case surgery::PoseSource::hand:
@@ -152,8 +154,10 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
   const scene::ConsoleSettings& console = scene_params.console;
   const Tissue force_order[5] = {Tissue::fascia, Tissue::fat, Tissue::ima, Tissue::heart,
                                  Tissue::chest_wall};
-  for (std::size_t k = 0; k < 5; ++k)
+  for (std::size_t k = 0; k < 5; ++k) {
     s.params.proxy.stiffness[std::size_t(force_order[k])] = console.force[k].stiffness;
+    s.params.proxy.damping[std::size_t(force_order[k])] = console.force[k].damping;
+  }
   const char* names[2] = {"left_instrument", "right_instrument"};
   for (int k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
@@ -175,6 +179,7 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
     st.geometry.boxes.reserve(4);
   }
   s.contacts.reserve(w.state.particles.size());
+  w.state.proxies.assign(2, physics::ProxyBody{});  // the stations' proxies, prepared each step
   s.camera_port = find_port(s.scene.ports, "camera");
   s.camera =
       surgery::endoscope_view(s.camera_port.position, s.camera_port.direction, params.endoscope);
@@ -301,8 +306,14 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   for (std::uint8_t k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
     build_geometry(s, st, k == 0 && held > 0);
+    const std::size_t first = w.state.contacts.rows.size();
     surgery::gather_tool_contacts(w.state.particles, st.geometry, st.previous_pose, st.pose,
                                   s.params.contact, dt, kToolContactTag + k, w.state.contacts);
+    // Its rows are two-body contacts with its proxy, so the tissue stops it inside the solve.
+    std::span<physics::ContactRow> rows(w.state.contacts.rows.data() + first,
+                                        w.state.contacts.rows.size() - first);
+    surgery::prepare_proxy_body(s.params.proxy, st.proxy, rows, k, w.state.particles.object.data(),
+                                s.object_tissue.data(), s.object_tissue.size(), w.state.proxies[k]);
   }
   profile[physics::Stage::contacts] += clock.lap();
   physics::StepResult r = scene::finish_thorax_step(s.scene, exec);
@@ -310,30 +321,37 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   r.profile += profile;
   if (!r.ok()) return r;
 
-  // 5. What touched; anything the gathering missed is put out now (a warning).
+  // 5. What touched; where the solve left each proxy; anything the gathering missed is put out
+  // now (a warning).
   bool moved = false;
   for (std::uint8_t k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
     st.contact =
         surgery::summarize_tool_contacts(w.state.particles, w.state.contacts, kToolContactTag + k);
+    surgery::Tissue pressed = surgery::Tissue::none;
+    surgery::tissue_force_on_tool(w.state.contacts, w.state.particles.object.data(),
+                                  s.object_tissue.data(), s.object_tissue.size(),
+                                  kToolContactTag + k, dt, pressed);
+    Vec3 pull = Vec3::Zero();
+    surgery::Tissue pulled_by = surgery::Tissue::none;
+    if (k == 0 && !s.grasper.held.empty()) {
+      // Held tissue pulls on the jaws (their attachments' targets were set where the step began):
+      // retracting it is felt, and the proxy gives way to it.
+      pull = surgery::grasp_force_on_jaws(w.state.particles, s.params.grasp,
+                                          surgery::world_pose(st.instrument, st.state), s.grasper);
+      pulled_by = tissue_of_particle(s, s.grasper.held.front().particle);
+    }
+    // The tool ended the step where the solve left its proxy: the local model's reference and
+    // the next step's motion start there (the pose keeps the surfaces' stop until then).
+    st.carried = w.state.proxies[k].carried();
+    st.state.controller.translation += st.carried;
+    surgery::translate_tool_geometry(st.geometry, st.carried);
+    surgery::finish_proxy_step(s.params.proxy, w.state.proxies[k], dt, pressed, pull, pulled_by,
+                               st.proxy);
     const surgery::ContactSummary missed =
         surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
                                        st.geometry, s.params.contact, dt, s.contacts);
     s.missed_tool_contacts += missed.inside;  // within the margin only is not a miss
-    surgery::Tissue pressed = surgery::Tissue::none;
-    Vec3 force = surgery::tissue_force_on_tool(w.state.contacts, w.state.particles.object.data(),
-                                               s.object_tissue.data(), s.object_tissue.size(),
-                                               kToolContactTag + k, dt, pressed);
-    if (k == 0 && !s.grasper.held.empty()) {
-      // Held tissue pulls on the jaws: retracting it is felt, and the proxy gives way to it.
-      const Vec3 pull =
-          surgery::grasp_force_on_jaws(w.state.particles, s.params.grasp,
-                                       surgery::world_pose(st.instrument, st.state), s.grasper);
-      if (pull.squaredNorm() > force.squaredNorm())
-        pressed = tissue_of_particle(s, s.grasper.held.front().particle);
-      force += pull;
-    }
-    surgery::update_proxy(s.params.proxy, force, pressed, st.proxy);
     moved = moved || missed.count > 0;
     record_contacts(s, k, st, time);
   }

@@ -70,6 +70,7 @@ struct Station {
   // (`pose`) is the proxy: this plus proxy.offset, stopped by the heart and the wall.
   Pose device;
   surgery::ProxyState proxy;
+  Vec3 carried = Vec3::Zero();  // how far the proxy moved inside the last step (unit: m)
   SurfaceStop stop;
   surgery::ToolGeometry geometry;
   surgery::ContactSummary contact;

@@ -9,6 +9,15 @@
 
 namespace imasim::surgery {
 
+void translate_tool_geometry(ToolGeometry& tool, const Vec3& by) {
+  for (Capsule& c : tool.capsules) {
+    c.a += by;
+    c.b += by;
+  }
+  for (OrientedBox& b : tool.boxes)
+    b.pose.translation += by;
+}
+
 void make_tool_geometry(const InstrumentParams& params, const InstrumentState& state,
                         ToolGeometry& out) {
   const Pose tool = world_pose(params, state);

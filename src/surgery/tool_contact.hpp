@@ -43,6 +43,9 @@ struct ToolGeometry {
   Vec3 velocity = Vec3::Zero();  // the tool's linear velocity this step (unit: m/s)
 };
 
+// Every shape moved by `by` (unit: m): the tool carried by its proxy's offset within a step.
+void translate_tool_geometry(ToolGeometry& tool, const Vec3& by);
+
 // Thickness of a jaw's box along its opening direction n (unit: m).
 inline constexpr Real kJawThickness = Real(1e-3);
 

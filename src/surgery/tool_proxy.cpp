@@ -4,6 +4,28 @@
 #include <cmath>
 
 namespace imasim::surgery {
+namespace {
+
+Tissue tissue_of(const physics::ObjectId* particle_object, const Tissue* object_tissue,
+                 std::size_t object_count, std::uint32_t particle) {
+  const std::size_t object = particle_object[particle];
+  return object < object_count ? object_tissue[object] : Tissue::none;
+}
+
+// The tissue with the largest share (none when every share is zero).
+Tissue largest(const std::array<Real, kTissueCount>& share) {
+  Tissue best = Tissue::none;
+  Real most = 0;
+  for (int t = 1; t < kTissueCount; ++t) {
+    if (share[std::size_t(t)] > most) {
+      most = share[std::size_t(t)];
+      best = Tissue(t);
+    }
+  }
+  return best;
+}
+
+}  // namespace
 
 Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
                           const physics::ObjectId* particle_object, const Tissue* object_tissue,
@@ -13,46 +35,65 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
   for (const physics::ContactRow& c : contacts.rows) {
     if (c.tag != tag || !(c.normal_impulse > 0)) continue;
     impulse -= c.normal_impulse * c.normal;  // the particle got +J n, the tool -J n
-    const std::size_t object = particle_object[c.particle];
-    const Tissue t = object < object_count ? object_tissue[object] : Tissue::none;
-    share[std::size_t(t)] += c.normal_impulse;
+    share[std::size_t(tissue_of(particle_object, object_tissue, object_count, c.particle))] +=
+        c.normal_impulse;
   }
-  pressed = Tissue::none;
-  Real best = 0;
-  for (int t = 1; t < kTissueCount; ++t) {
-    if (share[std::size_t(t)] > best) {
-      best = share[std::size_t(t)];
-      pressed = Tissue(t);
-    }
-  }
+  pressed = largest(share);
   return dt > 0 ? Vec3(impulse / dt) : Vec3::Zero();
 }
 
-void update_proxy(const ProxyParams& params, const Vec3& tissue_force, Tissue pressed,
-                  ProxyState& state) {
-  const Vec3 force = tissue_force.allFinite() ? tissue_force : Vec3::Zero();
-  // Secant estimate of the tissue's stiffness along the offset's last change: k_t = -dF.do/|do|^2
-  // (unit: N/m), only from changes large enough to measure.
+void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
+                        std::span<physics::ContactRow> rows, std::uint32_t body_index,
+                        const physics::ObjectId* particle_object, const Tissue* object_tissue,
+                        std::size_t object_count, physics::ProxyBody& body) {
+  std::array<Real, kTissueCount> count{};
+  for (physics::ContactRow& c : rows) {
+    c.body = body_index;
+    count[std::size_t(tissue_of(particle_object, object_tissue, object_count, c.particle))] += 1;
+  }
+  Tissue tissue = largest(count);
+  if (tissue == Tissue::none) tissue = state.pressed;
+  if (tissue == Tissue::none) tissue = Tissue::fascia;
+  body.stiffness = params.stiffness[std::size_t(tissue)];
+  body.damping = params.damping[std::size_t(tissue)];
+  body.max_offset = params.max_offset;
+  body.rest = state.rest;
+  body.offset = state.offset;
+}
+
+void relax_held_pull(const ProxyParams& params, const Vec3& pull, Tissue pull_tissue,
+                     ProxyState& state) {
+  const Vec3 force = pull.allFinite() ? pull : Vec3::Zero();
+  // Secant estimate of the held tissue's stiffness along o_rest's last change:
+  // k_t = -dF.do/|do|^2 (unit: N/m), only from changes large enough to measure.
   constexpr Real kMeasurable = Real(1e-7);  // (unit: m)
   // It decays only as new measurements come: at rest (no measurable change) it holds.
-  Real k_t = state.tissue_stiffness;
+  Real k_t = state.pull_stiffness;
   const Real moved = state.last_change.squaredNorm();
   if (moved > kMeasurable * kMeasurable) {
-    const Real secant = -(force - state.tissue_force).dot(state.last_change) / moved;
+    const Real secant = -(force - state.pull).dot(state.last_change) / moved;
     if (std::isfinite(secant)) k_t = std::max(params.stiffness_memory * k_t, secant);
   }
-  state.tissue_stiffness = k_t;
-  state.tissue_force = force;
-  state.pressed = pressed;
-  const Real k = params.stiffness[std::size_t(pressed)];
-  const Vec3 balance =
-      pressed == Tissue::none || !(k > 0) ? Vec3::Zero() : Vec3(state.tissue_force / k);
+  state.pull_stiffness = k_t;
+  state.pull = force;
+  const Real k = params.stiffness[std::size_t(pull_tissue)];
+  const Vec3 balance = pull_tissue == Tissue::none || !(k > 0) ? Vec3::Zero() : Vec3(force / k);
   const Real r = k > 0 ? std::min(params.relaxation, k / (k + k_t)) : params.relaxation;
-  const Vec3 before = state.offset;
-  state.offset += r * (balance - state.offset);
-  const Real length = state.offset.norm();
-  if (length > params.max_offset) state.offset *= params.max_offset / length;
-  state.last_change = state.offset - before;
+  const Vec3 before = state.rest;
+  state.rest += r * (balance - state.rest);
+  const Real length = state.rest.norm();
+  if (length > params.max_offset) state.rest *= params.max_offset / length;
+  state.last_change = state.rest - before;
+}
+
+void finish_proxy_step(const ProxyParams& params, const physics::ProxyBody& body, Real dt,
+                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state) {
+  state.offset = body.offset.allFinite() ? body.offset : Vec3::Zero();
+  const Vec3 contact = dt > 0 && body.impulse.allFinite() ? Vec3(body.impulse / dt) : Vec3::Zero();
+  const Vec3 held = pull.allFinite() ? pull : Vec3::Zero();
+  state.tissue_force = contact + held;
+  state.pressed = held.squaredNorm() > contact.squaredNorm() ? pull_tissue : pressed;
+  relax_held_pull(params, held, pull_tissue, state);
 }
 
 }  // namespace imasim::surgery

@@ -1,49 +1,55 @@
 #pragma once
 // The tool proxy (virtual coupling, SPEC S5 reading; issue 13): the instrument in the physics is
-// not where the hand puts it but a proxy coupled to that "device pose" by a spring of stiffness
-// k (the force law's k_d of the tissue it presses, eq. 17), and stopped by what it touches. The
-// heart and the chest wall stop it outright (the session's god-object stop); deformable tissue
-// stops it where the tissue's reaction balances the spring: the proxy sits at
-//   x_proxy = x_device + F_tissue / k,
-// F_tissue being the force the tissue's contacts put on the tool over the last step (their
-// normal impulses / dt). Eq. 17's d is then the depth of the device past the proxy along the
-// contact normal, and k d is what both the hand and the tissue feel.
+// not where the hand puts it but a proxy coupled to that "device pose" by eq. 17's spring and
+// damper (k_d, c_d of the tissue it presses), and stopped by what it touches. The heart and the
+// chest wall stop it outright (the session's god-object stop). Deformable tissue stops it inside
+// the solve: the proxy is a physics::ProxyBody whose offset o from the device is an unknown of the
+// step, and the instrument's contact rows are two-body constraints with it, so the tissue's
+// reaction pushes the proxy back in the same substeps in which the tool pushes the tissue
+// (physics/proxy_body.hpp). At rest k o is the force the tissue pushes the tool with, and eq. 17's
+// d is the depth of the device past the proxy along the contact normal: k d is what both the
+// hand and the tissue feel. With nothing touched the proxy returns to the device pose (time
+// constant c / k, 7 ms for the fascia).
 //
-// The proxy's offset moves toward its balance by a fraction r a step (a staggered coupling of
-// tool and tissue) and never exceeds `max_offset`: the force stays bounded however far the hand
-// pushes. With nothing touched F_tissue = 0, so the proxy returns to the device pose.
-// The staggered update is a fixed-point iteration: against tissue of local stiffness k_t
-// (dF = -k_t do) it converges only while r < 2 / (1 + k_t / k), and fastest at
-// r = 1 / (1 + k_t / k). Tissue held taut between anchors, or particles that the tool strikes
-// (their impulse per step grows with the tool's own jump), is far stiffer than k, and a fixed r
-// then makes the proxy swing from bound to bound. So r = min(relaxation, 1 / (1 + k_t / k)), with
-// k_t estimated each step from the last change of force over the last change of offset (a
-// secant), decaying by `stiffness_memory` with each new measurement and held at rest.
+// Held tissue pulls the forceps through the grasp's attachments, which the solve projects in
+// parallel colours and which therefore do not name the body. That pull moves the spring's rest
+// o_rest, one step behind: a staggered fixed-point iteration toward o_rest = F_pull / k, which
+// converges only while its relaxation r < 2 / (1 + k_t / k) (k_t the held tissue's local
+// stiffness) and fastest at r = 1 / (1 + k_t / k). Tissue held taut is far stiffer than k, so
+// r = min(relaxation, k / (k + k_t)) with k_t estimated each step as a secant (the last change of
+// the pull over the last change of o_rest), decaying by `stiffness_memory` with each new
+// measurement and held while o_rest does not measurably change.
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "math/types.hpp"
 #include "physics/contact.hpp"
 #include "physics/particles.hpp"
+#include "physics/proxy_body.hpp"
 #include "surgery/events.hpp"
 
 namespace imasim::surgery {
 
 struct ProxyParams {
-  // Coupling stiffness per tissue, indexed by Tissue (unit: N/m); the force law's k_d (eq. 17),
-  // copied from it by whoever sets up the haptics (docs/haptics.md).
+  // The coupling per tissue, indexed by Tissue: eq. 17's k_d (unit: N/m) and c_d (unit: N s/m),
+  // copied from the force law by whoever sets up the haptics (docs/haptics.md).
   std::array<Real, kTissueCount> stiffness{300, 300, 200, 100, 400, 1000};
-  Real relaxation = Real(0.5);        // largest fraction of the way to the balance per step (-)
+  std::array<Real, kTissueCount> damping{2, 2, 2, 1, 3, 5};
+  Real relaxation = Real(0.5);        // the held pull's largest step toward its balance (-)
   Real stiffness_memory = Real(0.9);  // the estimated k_t's decay per measurement (-)
   Real max_offset = Real(0.015);      // largest proxy-device distance (unit: m)
 };
 
 struct ProxyState {
-  Vec3 offset = Vec3::Zero();        // x_proxy - x_device (unit: m)
+  Vec3 offset = Vec3::Zero();        // x_proxy - x_device after the last step (unit: m)
   Vec3 tissue_force = Vec3::Zero();  // on the tool, mean over the last step (unit: N)
   Tissue pressed = Tissue::none;     // the tissue with the largest share of it
-  Real tissue_stiffness = 0;         // k_t estimated from the last steps (unit: N/m)
-  Vec3 last_change = Vec3::Zero();   // of the offset at the last update (unit: m)
+  // The held tissue's pull (staggered, see above).
+  Vec3 pull = Vec3::Zero();         // on the jaws after the last step (unit: N)
+  Vec3 rest = Vec3::Zero();         // o_rest (unit: m)
+  Real pull_stiffness = 0;          // k_t estimated from the last steps (unit: N/m)
+  Vec3 last_change = Vec3::Zero();  // of o_rest at the last update (unit: m)
 };
 
 // The force on the tool from the contact rows tagged `tag` over the last step of length dt:
@@ -54,8 +60,25 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
                           const physics::ObjectId* particle_object, const Tissue* object_tissue,
                           std::size_t object_count, std::uint32_t tag, Real dt, Tissue& pressed);
 
-// One step of the coupling: the offset moves toward F_tissue / k(pressed tissue).
-void update_proxy(const ProxyParams& params, const Vec3& tissue_force, Tissue pressed,
-                  ProxyState& state);
+// Before a step, with the instrument's contact rows gathered (`rows`): they name the body
+// (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
+// them touch (with none, of the tissue pressed in the last step; with none either, the
+// fascia's), the bound, the held pull's rest and the offset the proxy ended the last step with.
+void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
+                        std::span<physics::ContactRow> rows, std::uint32_t body_index,
+                        const physics::ObjectId* particle_object, const Tissue* object_tissue,
+                        std::size_t object_count, physics::ProxyBody& body);
+
+// After a step of length dt: the offset the solve left, the tissue's force on the tool (what the
+// contacts put on the body over the step, normal and friction: at rest k (o - o_rest)) plus the
+// held tissue's `pull`, the tissue pressed (`pressed`, from tissue_force_on_tool, or the pull's
+// when the pull is the larger), and o_rest moved toward F_pull / k (`pull_tissue`'s k; see
+// above). A non-finite pull is no pull.
+void finish_proxy_step(const ProxyParams& params, const physics::ProxyBody& body, Real dt,
+                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state);
+
+// The staggered relaxation of o_rest alone (finish_proxy_step's last part).
+void relax_held_pull(const ProxyParams& params, const Vec3& pull, Tissue pull_tissue,
+                     ProxyState& state);
 
 }  // namespace imasim::surgery
