@@ -38,7 +38,8 @@ Mat3 frame_along(const Vec3& f) {
 
 void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput& in) {
   st.previous_pose = st.pose;
-  st.previous_pose.translation += st.carried;
+  st.previous_pose.translation += st.carried;  // where the last step's solve left the tool
+  st.carried = Vec3::Zero();                   // a step that fails carries nothing
   st.previous_controller = st.state.controller;
   switch (in.source) {
     case surgery::PoseSource::hand:
