@@ -78,7 +78,12 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
       {"[devices]\nigtl_port = 70000\n",
        "bad.toml:2: key 'devices.igtl_port': expected an integer in [0, 65535], got 70000"},
       {"[force_ima]\nstiffness_n_per_m = -5\n",
-       "bad.toml:2: key 'force_ima.stiffness_n_per_m': expected a number in [0, 100000], got -5"},
+       "bad.toml:2: key 'force_ima.stiffness_n_per_m': expected a number in [1, 100000], got -5"},
+      // A zero coupling would silently make the tool rigid (docs/haptics.md): refused.
+      {"[force_fascia]\nstiffness_n_per_m = 0\n",
+       "bad.toml:2: key 'force_fascia.stiffness_n_per_m': expected a number in [1, 100000], got 0"},
+      {"[force_fat]\ndamping_n_s_per_m = 0.0\n",
+       "bad.toml:2: key 'force_fat.damping_n_s_per_m': expected a number in [0.01, 1000], got 0"},
       {"[heart]\nhart_rate_bpm = 80\n",
        "bad.toml:2: key 'heart.hart_rate_bpm': unknown key; did you mean 'heart.heart_rate_bpm'?"},
       {"[heart]\n\nejection_fraction = 1.5\n",

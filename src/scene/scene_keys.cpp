@@ -60,11 +60,11 @@ constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, k
 // The force model's keys of one tissue (eq. 17-19; docs/haptics.md), table force_<tissue>.
 #define IMASIM_FORCE_KEYS(table, i)                                                              \
   SceneKey{table ".stiffness_n_per_m",                                                           \
-           RealRef([](P& p) { return &p.console.force[i].stiffness; }), 0, 1e5,                  \
-           "k_d of eq. 17, also the tool proxy's coupling to this tissue"},                      \
+           RealRef([](P& p) { return &p.console.force[i].stiffness; }), 1, 1e5,                  \
+           "k_d of eq. 17, also the tool proxy's coupling (> 0: 0 would make the tool rigid)"},  \
       SceneKey{table ".damping_n_s_per_m",                                                       \
-               RealRef([](P& p) { return &p.console.force[i].damping; }), 0, 1e3,                \
-               "c_d of eq. 17"},                                                                 \
+               RealRef([](P& p) { return &p.console.force[i].damping; }), 0.01, 1e3,             \
+               "c_d of eq. 17, also the proxy's damper (> 0: 0 would make the tool rigid)"},     \
       SceneKey{table ".friction", RealRef([](P& p) { return &p.console.force[i].friction; }), 0, \
                2, "mu of eq. 18"},                                                               \
       SceneKey{table ".cutting_resistance_n_s_per_m",                                            \
