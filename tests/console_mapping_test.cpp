@@ -62,9 +62,11 @@ TEST(ConsoleMapping, JawValueIsATargetAngle) {
 TEST(LocalModelOf, TheDeviceIsKdDBehindTheProxy) {
   session::SurgicalSession s = default_session();
   session::Station& st = s.stations[1];
-  // The hook's proxy held 2 mm short of its device by fascia pushing back along +y.
+  // The hook's proxy held 2 mm short of its device by fascia pushing back along +y while it
+  // slides: the drag across the push is eq. 18's to render, so the plane's normal is the push's.
   st.proxy.pressed = surgery::Tissue::fascia;
-  st.proxy.tissue_force = Vec3(0, 0.6, 0);
+  st.proxy.tissue_force = Vec3(0.2, 0.6, 0);  // the contacts' friction drags along +x
+  st.proxy.normal_force = Vec3(0, 0.6, 0);
   st.source = surgery::PoseSource::tool;
   const haptics::LocalModel m = local_model_of(s, 1, 2.0, 7);
   ASSERT_EQ(m.contact_count, 1u);

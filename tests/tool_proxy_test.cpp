@@ -86,8 +86,8 @@ struct PressRig {
     normal_force =
         tissue_force_on_tool(world.state.contacts, world.state.particles.object.data(),
                              object_tissue.data(), object_tissue.size(), kTag, dt, pressed);
-    finish_proxy_step(params, world.state.proxies[0], dt, pressed, Vec3::Zero(), Tissue::none,
-                      proxy);
+    finish_proxy_step(params, world.state.proxies[0], dt, normal_force, pressed, Vec3::Zero(),
+                      Tissue::none, proxy);
     previous_probe = at + world.state.proxies[0].carried();  // where the solve left the tool
   }
 
@@ -119,10 +119,11 @@ TEST(ToolProxy, PressingFiveMillimetresRestsOnTheSurfaceWithEquationSeventeensFo
       haptics::default_force_model_params().of(haptics::TissueKind::fascia);
   const Real force = p.tissue_force.norm();
   EXPECT_LT((p.tissue_force - fascia.stiffness * p.offset).norm(), 0.03 * force);
-  // Eq. 17 with d = the device's depth past the proxy along that force, at rest (v_n = 0), is
-  // the force the tissue pushes back with.
+  // Eq. 17 with d = the device's depth past the proxy along the normal channel (the contacts'
+  // normal push, as the local model takes it), at rest (v_n = 0), is the force the tissue pushes
+  // back with: the friction locked in by the wrap pulls along the push here, not across it.
   haptics::ContactKinematics contact;
-  contact.normal = p.tissue_force / force;
+  contact.normal = p.normal_force.normalized();
   contact.depth = p.offset.dot(contact.normal);
   const haptics::ForceChannels f = haptics::contact_force(fascia, nullptr, 0, contact);
   EXPECT_NEAR(f.normal_n, fascia.stiffness * contact.depth, 1e-12);
@@ -180,14 +181,20 @@ TEST(ToolProxy, TheHeldPullMovesTheRestTowardItsBalanceWithinTheBound) {
   EXPECT_EQ(state.pull, Vec3::Zero());
   EXPECT_TRUE(state.rest.allFinite());
   // After a step the tool feels the contacts and the pull, and the pressed tissue is the larger's.
+  // The normal channel is the contacts' normal push and the pull, without the contacts' friction.
   physics::ProxyBody body;
   body.offset = Vec3(0, 0.001, 0);
-  body.impulse = Vec3(0, 0.0005, 0);  // 0.1 N over a 5 ms step
+  body.impulse = Vec3(0.0001, 0.0005, 0);  // 0.1 N of push and 0.02 N of friction over 5 ms
   ProxyState after;
-  finish_proxy_step(params, body, 0.005, Tissue::fascia, Vec3(0, 0, -0.3), Tissue::ima, after);
+  finish_proxy_step(params, body, 0.005, Vec3(0, 0.1, 0), Tissue::fascia, Vec3(0, 0, -0.3),
+                    Tissue::ima, after);
   EXPECT_EQ(after.offset, body.offset);
-  EXPECT_NEAR((after.tissue_force - Vec3(0, 0.1, -0.3)).norm(), 0, 1e-15);
+  EXPECT_NEAR((after.tissue_force - Vec3(0.02, 0.1, -0.3)).norm(), 0, 1e-15);
+  EXPECT_NEAR((after.normal_force - Vec3(0, 0.1, -0.3)).norm(), 0, 1e-15);
   EXPECT_EQ(after.pressed, Tissue::ima);
+  finish_proxy_step(params, body, 0.005, Vec3(NAN, 0, 0), Tissue::fascia, Vec3::Zero(),
+                    Tissue::none, after);
+  EXPECT_EQ(after.normal_force, Vec3::Zero());  // a non-finite push is none
 }
 
 TEST(ToolProxy, AgainstHeldTissueFarStifferThanTheCouplingTheRestSettlesInsteadOfSwinging) {

@@ -37,6 +37,7 @@ TEST(TrajectorySample, TheForceIsEquationSeventeenAtTheDevicesDepth) {
   // The proxy held 2 mm short of the device by fascia pushing back along +y, at rest.
   hook.proxy.pressed = surgery::Tissue::fascia;
   hook.proxy.tissue_force = Vec3(0, 0.6, 0);
+  hook.proxy.normal_force = Vec3(0, 0.6, 0);  // the contacts' normal push: no friction
   hook.device = hook.pose;
   hook.device.translation = hook.state.controller.translation - Vec3(0, 0.002, 0);
   hook.previous_pose = hook.pose;

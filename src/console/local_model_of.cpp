@@ -27,12 +27,14 @@ haptics::LocalModel local_model_of(const session::SurgicalSession& s, int statio
   m.step = step;
   const Vec3 reference = st.state.controller.translation;  // the proxy's hinge
   // Tissue: the proxy sits where the tissue's force balances the coupling, so the plane through
-  // the proxy's hinge normal to that force puts the device k_d d behind it.
-  const Real pushed = st.proxy.tissue_force.norm();
+  // the proxy's hinge normal to its normal channel (the contacts' push and the pull) puts the
+  // device k_d d behind it. The contacts' friction across that normal is left to eq. 18, which
+  // renders a sliding tool's drag itself: taken into the normal it would be felt twice.
+  const Real pushed = st.proxy.normal_force.norm();
   if (st.proxy.pressed != surgery::Tissue::none && pushed > 0) {
     haptics::LocalContact& c = m.contacts[m.contact_count++];
     c.point = reference;
-    c.normal = st.proxy.tissue_force / pushed;
+    c.normal = st.proxy.normal_force / pushed;
     c.tissue = tissue_kind(st.proxy.pressed);
   }
   // The heart or the wall: their surface where they stop the proxy, the device's point there

@@ -25,6 +25,12 @@ struct SolverParams {
   // (stride h^2)). Bending is soft next to stretching, so its rows need fewer projections to
   // converge (docs/physics.md). 1 = every substep; reduced like coarse_stride.
   std::uint32_t bending_stride = 1;
+  // Sweeps per iteration of the fine objects' stiff rows (stretch, attachments) and of what they
+  // act against (contacts, the proxies' coupling), lambdas accumulating; bending and the coarse
+  // objects once. One sweep leaves a stretch row the effective compliance alpha + w h^2: a
+  // membrane reads soft by about (c h / l)^2, c its wave speed and l its edge, which a further
+  // sweep mostly takes away for the price of these rows alone (docs/physics.md). 1 = one sweep.
+  std::uint32_t stretch_sweeps = 1;
 
   std::uint32_t effective_coarse_stride() const;
   std::uint32_t effective_bending_stride() const;

@@ -391,6 +391,16 @@ StepResult step(const Model& model, State& state, Executor& exec) {
           profile[Stage::contacts] += clock.lap();
         }
         project_proxy_couplings(state, plan.fine_h);
+        // Further sweeps of the fine band's stiff rows, their lambdas accumulating: stretch,
+        // attachments and what they act against (contacts, the proxies' coupling), not bending.
+        for (std::uint32_t sweep = 1; sweep < solver.stretch_sweeps; ++sweep) {
+          project_band(cs, 0, fine, nullptr, exec);
+          project_follows(state, 0);
+          profile[Stage::solve] += clock.lap();
+          project_contacts(state, 0, fine_tau0, tau1, plan.fine_h);
+          profile[Stage::contacts] += clock.lap();
+          project_proxy_couplings(state, plan.fine_h);
+        }
       }
       const std::uint32_t bad = update_velocities(model, state, plan, exec);
       if (bad != kInvalidIndex) {

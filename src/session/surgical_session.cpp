@@ -330,9 +330,9 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     st.contact =
         surgery::summarize_tool_contacts(w.state.particles, w.state.contacts, kToolContactTag + k);
     surgery::Tissue pressed = surgery::Tissue::none;
-    surgery::tissue_force_on_tool(w.state.contacts, w.state.particles.object.data(),
-                                  s.object_tissue.data(), s.object_tissue.size(),
-                                  kToolContactTag + k, dt, pressed);
+    const Vec3 normal_push = surgery::tissue_force_on_tool(
+        w.state.contacts, w.state.particles.object.data(), s.object_tissue.data(),
+        s.object_tissue.size(), kToolContactTag + k, dt, pressed);
     Vec3 pull = Vec3::Zero();
     surgery::Tissue pulled_by = surgery::Tissue::none;
     if (k == 0 && !s.grasper.held.empty()) {
@@ -347,8 +347,8 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     st.carried = w.state.proxies[k].carried();
     st.state.controller.translation += st.carried;
     surgery::translate_tool_geometry(st.geometry, st.carried);
-    surgery::finish_proxy_step(s.params.proxy, w.state.proxies[k], dt, pressed, pull, pulled_by,
-                               st.proxy);
+    surgery::finish_proxy_step(s.params.proxy, w.state.proxies[k], dt, normal_push, pressed, pull,
+                               pulled_by, st.proxy);
     const surgery::ContactSummary missed =
         surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
                                        st.geometry, s.params.contact, dt, s.contacts);

@@ -87,11 +87,13 @@ void relax_held_pull(const ProxyParams& params, const Vec3& pull, Tissue pull_ti
 }
 
 void finish_proxy_step(const ProxyParams& params, const physics::ProxyBody& body, Real dt,
-                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state) {
+                       const Vec3& normal_push, Tissue pressed, const Vec3& pull,
+                       Tissue pull_tissue, ProxyState& state) {
   state.offset = body.offset.allFinite() ? body.offset : Vec3::Zero();
   const Vec3 contact = dt > 0 && body.impulse.allFinite() ? Vec3(body.impulse / dt) : Vec3::Zero();
   const Vec3 held = pull.allFinite() ? pull : Vec3::Zero();
   state.tissue_force = contact + held;
+  state.normal_force = (normal_push.allFinite() ? normal_push : Vec3::Zero()) + held;
   state.pressed = held.squaredNorm() > contact.squaredNorm() ? pull_tissue : pressed;
   relax_held_pull(params, held, pull_tissue, state);
 }

@@ -44,6 +44,9 @@ struct ProxyParams {
 struct ProxyState {
   Vec3 offset = Vec3::Zero();        // x_proxy - x_device after the last step (unit: m)
   Vec3 tissue_force = Vec3::Zero();  // on the tool, mean over the last step (unit: N)
+  // Its part along the contacts' normals, plus the pull: eq. 17's normal channel. The rest of
+  // tissue_force is the contacts' friction, which the haptic loop renders as eq. 18 instead.
+  Vec3 normal_force = Vec3::Zero();  // (unit: N)
   Tissue pressed = Tissue::none;     // the tissue with the largest share of it
   // The held tissue's pull (staggered, see above).
   Vec3 pull = Vec3::Zero();         // on the jaws after the last step (unit: N)
@@ -71,11 +74,13 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
 
 // After a step of length dt: the offset the solve left, the tissue's force on the tool (what the
 // contacts put on the body over the step, normal and friction: at rest k (o - o_rest)) plus the
-// held tissue's `pull`, the tissue pressed (`pressed`, from tissue_force_on_tool, or the pull's
-// when the pull is the larger), and o_rest moved toward F_pull / k (`pull_tissue`'s k; see
-// above). A non-finite pull is no pull.
+// held tissue's `pull`, its normal part (`normal_push`, the contacts' normal impulses over dt
+// from tissue_force_on_tool, plus the pull), the tissue pressed (`pressed`, or the pull's when
+// the pull is the larger), and o_rest moved toward F_pull / k (`pull_tissue`'s k; see above). A
+// non-finite pull or push is none.
 void finish_proxy_step(const ProxyParams& params, const physics::ProxyBody& body, Real dt,
-                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state);
+                       const Vec3& normal_push, Tissue pressed, const Vec3& pull,
+                       Tissue pull_tissue, ProxyState& state);
 
 // The staggered relaxation of o_rest alone (finish_proxy_step's last part).
 void relax_held_pull(const ProxyParams& params, const Vec3& pull, Tissue pull_tissue,
