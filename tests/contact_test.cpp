@@ -1,6 +1,7 @@
 // Contacts inside the solve (physics/contact.hpp): a particle on a moving surface.
 #include <gtest/gtest.h>
 
+#include "physics/contact.hpp"
 #include "physics/executor.hpp"
 #include "physics/step.hpp"
 
@@ -109,6 +110,75 @@ TEST(Contact, APushingSurfaceGivesItsOwnNormalVelocity) {
   ASSERT_TRUE(step(s.model, s.state, exec).ok());
   EXPECT_NEAR(s.state.particles.position[0].y(), 0.1 * s.model.solver.dt, 1e-15);
   EXPECT_NEAR(s.state.particles.velocity[0].y(), 0.1, 1e-12);
+}
+
+// A row on the plane y = 0 through the origin, at rest, with friction mu_s, mu_k.
+ContactRow row_on_plane(Real mu_s, Real mu_k) {
+  ContactRow c;
+  c.normal = Vec3::UnitY();
+  c.static_friction = mu_s;
+  c.kinetic_friction = mu_k;
+  return c;
+}
+
+// Coulomb's bound holds over the substep, not per projection: a row projected twice in a substep
+// (the second stretch sweep) keeps static friction when the second projection's own normal
+// correction is small. Here the first projection pushes the particle 1 mm out and holds its
+// 0.1 mm slip (0.1 mm < mu_s 1 mm); a sweep then moves it back 0.1 mm along the plane and 1 um
+// into it. Against that 1 um alone the particle would slip (0.1 mm > 0.5 um) and keep 99.6 % of
+// it; against the substep's 1.001 mm it is held where the surface is.
+TEST(Contact, StaticFrictionHoldsAcrossASecondProjectionInTheSubstep) {
+  ContactRow c = row_on_plane(0.5, 0.4);
+  const Vec3 x_start = Vec3::Zero();
+  const Real w = 1000, h = 1e-4;
+  Vec3 x(1e-4, -1e-3, 0);
+  project_contact(c, &x, &x_start, &w, 0, 1, h);
+  EXPECT_NEAR(x.x(), 0, 1e-15);
+  EXPECT_NEAR(x.y(), 0, 1e-15);
+  x += Vec3(1e-4, -1e-6, 0);  // what the second sweep did
+  project_contact(c, &x, &x_start, &w, 0, 1, h);
+  EXPECT_NEAR(x.x(), 0, 1e-15);
+  EXPECT_NEAR(x.y(), 0, 1e-15);
+  EXPECT_NEAR(c.substep_normal, 1.001e-3, 1e-15);
+}
+
+// Kinetic friction removes no more in all than mu_k times the substep's normal correction: the
+// first projection is static (it holds 0.4 mm of slip, within mu_s 1 mm), and a sweep then drags
+// the particle 1 mm along the plane, 1 nm into it. The 0.4 mm held already spends more than
+// mu_k 1.000001 mm = 0.3 mm, so the drag stays whole; per projection, friction would have taken
+// another mu_k 1 nm from it.
+TEST(Contact, KineticFrictionSpendsTheSubstepsBoundOnce) {
+  ContactRow c = row_on_plane(0.5, 0.3);
+  const Vec3 x_start = Vec3::Zero();
+  const Real w = 1000, h = 1e-4;
+  Vec3 x(4e-4, -1e-3, 0);
+  project_contact(c, &x, &x_start, &w, 0, 1, h);
+  EXPECT_NEAR(x.x(), 0, 1e-15);
+  x += Vec3(1e-3, -1e-9, 0);
+  project_contact(c, &x, &x_start, &w, 0, 1, h);
+  EXPECT_NEAR(x.x(), 1e-3, 1e-15);
+  EXPECT_NEAR(c.substep_friction, 4e-4, 1e-15);
+}
+
+// The same bound against a proxy body's surface (the two-body overload): the second projection
+// still holds the particle, now relative to the body, which takes its share of each correction.
+TEST(Contact, StaticFrictionAgainstAProxyBodyHoldsAcrossASecondProjection) {
+  ContactRow c = row_on_plane(0.5, 0.4);
+  ProxyBody body;
+  body.stiffness = 500;
+  body.damping = 2;
+  const Vec3 x_start = Vec3::Zero();
+  const Real h = 1e-4;
+  const Real w = 1 / (body.damping * h);  // as light as the body: each takes half
+  Vec3 x(1e-4, -1e-3, 0);
+  project_contact(c, &x, &x_start, &w, body, Vec3::Zero(), 0, 1, h);
+  const Vec3 slip_after_first = x - body.offset;
+  EXPECT_NEAR(slip_after_first.x(), 0, 1e-15);
+  x += Vec3(1e-4, -1e-6, 0);
+  const Vec3 body_before = body.offset;
+  project_contact(c, &x, &x_start, &w, body, Vec3::Zero(), 0, 1, h);
+  EXPECT_NEAR((x - body.offset).x(), 0, 1e-15);   // held: no tangential slip relative to the body
+  EXPECT_GT((body.offset - body_before).x(), 0);  // and the body was dragged its share
 }
 
 }  // namespace

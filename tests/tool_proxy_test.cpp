@@ -253,7 +253,33 @@ TEST(ToolProxy, CouplingDefaultsAreTheForceLawsSpringAndDamper) {
   for (const auto& [tissue, kind] : pairs) {
     EXPECT_EQ(params.stiffness[std::size_t(tissue)], law.of(kind).stiffness);
     EXPECT_EQ(params.damping[std::size_t(tissue)], law.of(kind).damping);
+    EXPECT_EQ(params.friction[std::size_t(tissue)], law.of(kind).friction);
   }
+}
+
+// Each contact row takes the friction of the tissue its particle belongs to (eq. 18's mu, static
+// and kinetic alike); a particle of no tissue keeps what the gathering gave it.
+TEST(ToolProxy, EachRowTakesItsTissuesFriction) {
+  ProxyParams params;
+  params.friction[std::size_t(Tissue::fascia)] = Real(0.25);
+  params.friction[std::size_t(Tissue::fat)] = Real(0.05);
+  const physics::ObjectId particle_object[3] = {0, 1, 2};
+  const Tissue object_tissue[3] = {Tissue::fascia, Tissue::fat, Tissue::none};
+  std::vector<physics::ContactRow> rows(3);
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    rows[i].particle = i;
+    rows[i].static_friction = Real(0.6);
+    rows[i].kinetic_friction = Real(0.4);
+  }
+  physics::ProxyBody body;
+  prepare_proxy_body(params, ProxyState{}, rows, 0, particle_object, object_tissue, 3, body);
+  EXPECT_EQ(rows[0].static_friction, Real(0.25));
+  EXPECT_EQ(rows[0].kinetic_friction, Real(0.25));
+  EXPECT_EQ(rows[1].static_friction, Real(0.05));
+  EXPECT_EQ(rows[1].kinetic_friction, Real(0.05));
+  EXPECT_EQ(rows[2].static_friction, Real(0.6));
+  EXPECT_EQ(rows[2].kinetic_friction, Real(0.4));
+  EXPECT_EQ(rows[0].body, 0u);
 }
 
 }  // namespace

@@ -30,8 +30,10 @@ struct ContactRow {
   std::uint32_t body = kNoBody;  // the proxy body the surface belongs to, or none (kinematic)
   // Results of the step: the deepest penetration corrected in its last substep and the normal
   // impulse over the step (sum of m dn / h; / dt gives the mean force).
-  Real depth = 0;           // (unit: m)
-  Real normal_impulse = 0;  // (unit: N s)
+  Real depth = 0;  // (unit: m)
+  // Within the substep: the normal correction so far and the tangential one friction made.
+  Real substep_normal = 0, substep_friction = 0;  // (unit: m)
+  Real normal_impulse = 0;                        // (unit: N s)
 };
 
 struct ContactSet {
@@ -42,6 +44,25 @@ struct ContactSet {
   // end, the deepest one (or null).
   std::size_t touching(std::uint32_t first_tag, std::uint32_t end_tag) const;
 };
+
+// Coulomb's bound on one projection's friction, as a share of the tangential slip s (unit: m)
+// to remove. The bound is over the whole substep: a row projected more than once in it (extra
+// stretch sweeps, iterations) compares the slip since the substep began with mu times the normal
+// correction accumulated so far, and kinetic friction removes no more in all than mu_k times it.
+// Against one projection's dn alone, every projection after the first would see a small residual
+// dn against the whole slip and let go. With one projection per substep this is the plain bound.
+inline Real friction_share(ContactRow& c, Real dn, Real s) {
+  c.substep_normal += dn;
+  if (s < c.static_friction * c.substep_normal) {  // static: it moves with the surface
+    c.substep_friction += s;
+    return 1;
+  }
+  if (!(s > 0)) return 0;
+  Real share = (c.kinetic_friction * c.substep_normal - c.substep_friction) / s;
+  share = share < 0 ? Real(0) : (share < 1 ? share : Real(1));
+  c.substep_friction += share * s;
+  return share;
+}
 
 // One projection (see above) against a kinematic surface. x_start: positions at the substep's
 // start; tau0, tau1: the substep's start and end as fractions of the step; h: the substep's
@@ -63,12 +84,7 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
   const Vec3 slip = (x - x_start[c.particle]) - (tau1 - tau0) * motion;
   const Vec3 slip_t = slip - slip.dot(c.normal) * c.normal;
   const Real s = slip_t.norm();
-  if (s < c.static_friction * dn) {
-    x -= slip_t;  // static: it moves with the surface
-  } else if (s > 0) {
-    const Real reduce = c.kinetic_friction * dn / s;
-    x -= (reduce < 1 ? reduce : Real(1)) * slip_t;
-  }
+  x -= friction_share(c, dn, s) * slip_t;
 }
 
 // The same against a proxy body's surface: the plane is carried by the body's offset since the
@@ -100,13 +116,7 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
   const Vec3 slip = (x - x_start[c.particle]) - surface;
   const Vec3 slip_t = slip - slip.dot(c.normal) * c.normal;
   const Real s = slip_t.norm();
-  Vec3 removed = Vec3::Zero();
-  if (s < c.static_friction * dn) {
-    removed = slip_t;
-  } else if (s > 0) {
-    const Real reduce = c.kinetic_friction * dn / s;
-    removed = (reduce < 1 ? reduce : Real(1)) * slip_t;
-  }
+  const Vec3 removed = friction_share(c, dn, s) * slip_t;
   x -= share * removed;
   body.offset += (1 - share) * removed;
   body.impulse += body.damping * (1 - share) * removed;

@@ -254,8 +254,10 @@ void remove_separating_velocities(State& state, std::uint32_t band, Real inverse
 }
 
 void reset_contact_depths(State& state, std::uint32_t band) {
-  for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band))
+  for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
     c.depth = 0;
+    c.substep_normal = c.substep_friction = 0;
+  }
 }
 
 // v = (p - x) / h, then x = p, and linear damping (eq. 4): v <- keep v with the object's factor

@@ -49,7 +49,10 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
   std::array<Real, kTissueCount> count{};
   for (physics::ContactRow& c : rows) {
     c.body = body_index;
-    count[std::size_t(tissue_of(particle_object, object_tissue, object_count, c.particle))] += 1;
+    const Tissue touched = tissue_of(particle_object, object_tissue, object_count, c.particle);
+    count[std::size_t(touched)] += 1;
+    if (touched == Tissue::none) continue;
+    c.static_friction = c.kinetic_friction = params.friction[std::size_t(touched)];
   }
   Tissue tissue = largest(count);
   if (tissue == Tissue::none) tissue = state.pressed;

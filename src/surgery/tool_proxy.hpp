@@ -36,6 +36,11 @@ struct ProxyParams {
   // copied from the force law by whoever sets up the haptics (docs/haptics.md).
   std::array<Real, kTissueCount> stiffness{300, 300, 200, 100, 400, 1000};
   std::array<Real, kTissueCount> damping{2, 2, 2, 1, 3, 5};
+  // Coulomb's mu between the tool and each tissue, eq. 18's mu (-): one coefficient per pair, so
+  // the drag the tool puts on the tissue and the one the hand feels are the same friction. It is
+  // the contact rows' static and kinetic friction alike.
+  std::array<Real, kTissueCount> friction{Real(0.2), Real(0.2), Real(0.15),
+                                          Real(0.1), Real(0.1), Real(0.3)};
   Real relaxation = Real(0.5);        // the held pull's largest step toward its balance (-)
   Real stiffness_memory = Real(0.9);  // the estimated k_t's decay per measurement (-)
   Real max_offset = Real(0.015);      // largest proxy-device distance (unit: m)
@@ -67,6 +72,7 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
 // (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
 // them touch (with none, of the tissue pressed in the last step; with none either, the
 // fascia's), the bound, the held pull's rest and the offset the proxy ended the last step with.
+// Each row takes its own tissue's friction (a particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
                         std::span<physics::ContactRow> rows, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
