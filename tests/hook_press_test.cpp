@@ -65,10 +65,10 @@ Press press_from(const std::string& csv) {
 // `imasim run` on a script for some seconds with the given [solver] table ("" for the defaults).
 Press run_press(const std::string& name, const std::string& solver, const std::string& script,
                 const std::string& seconds) {
-  const std::string scene = kDir + "imasim_held_hook_" + name + ".toml";
+  const std::string scene = kDir + "imasim_hook_press_" + name + ".toml";
   std::ofstream(scene) << solver;
-  const std::string csv = kDir + "imasim_held_hook_" + name + ".csv";
-  const std::string err = imasim::test::test_err_file(kDir, "imasim_held_hook_" + name);
+  const std::string csv = kDir + "imasim_hook_press_" + name + ".csv";
+  const std::string err = imasim::test::test_err_file(kDir, "imasim_hook_press_" + name);
   const imasim::test::Finished f =
       imasim::test::run_imasim("run --headless --scene " + scene + " --script " + script +
                                    " --seconds " + seconds + " --threads 1 --no-db --record " + csv,

@@ -92,22 +92,29 @@ Real press_force(const Press& press) {
   return force.norm();
 }
 
+// One press at the default, at a finer setting and with one sweep (unit: N).
+struct PressFigures {
+  Real by_default = 0, reference = 0, one_sweep = 0;
+};
+
+PressFigures press_three(const Press& p, std::uint32_t fine_substeps, std::uint32_t fine_sweeps) {
+  Press fine = p;
+  fine.substeps = fine_substeps, fine.stretch_sweeps = fine_sweeps;
+  Press one = p;
+  one.stretch_sweeps = 1;
+  return {press_force(p), press_force(fine), press_force(one)};
+}
+
 // A rigid ball 11.5 mm deep, frictionless (a unique rest): the default solve is within 5 % of
 // 128 substeps with 3 sweeps. With one stretch sweep the membrane's stretch rows keep the
 // compliance alpha + w h^2 and read about 15 % soft: the comparison means something.
 TEST(PressConvergence, RigidBallForceIsWithinFivePercentOfAFourTimesFinerSolve) {
   Press p;
   p.depth = Real(0.0115);
-  const Real by_default = press_force(p);
-  Press fine = p;
-  fine.substeps = 128, fine.stretch_sweeps = 3;
-  const Real reference = press_force(fine);
-  Press one_sweep = p;
-  one_sweep.stretch_sweeps = 1;
-  const Real soft = press_force(one_sweep);
-  EXPECT_GT(reference, 0.2);  // a few tenths of a newton: the membrane's stiff part
-  EXPECT_NEAR(by_default, reference, 0.05 * reference);
-  EXPECT_LT(soft, 0.9 * reference);
+  const PressFigures f = press_three(p, 128, 3);
+  EXPECT_GT(f.reference, 0.2);  // a few tenths of a newton: the membrane's stiff part
+  EXPECT_NEAR(f.by_default, f.reference, 0.05 * f.reference);
+  EXPECT_LT(f.one_sweep, 0.9 * f.reference);
 }
 
 // The same press through the tool proxy (eq. 17's coupling inside the solve), 12 mm deep: the
@@ -135,16 +142,10 @@ TEST(PressConvergence, ProxyForceWithFrictionIsWithinFivePercentOfAFinerSolve) {
   p.depth = Real(0.012);
   p.proxy = true;
   p.friction = true;
-  const Real by_default = press_force(p);
-  Press fine = p;
-  fine.substeps = 256, fine.stretch_sweeps = 3;
-  const Real reference = press_force(fine);
-  Press one_sweep = p;
-  one_sweep.stretch_sweeps = 1;
-  const Real soft = press_force(one_sweep);
-  EXPECT_GT(reference, 0.2);
-  EXPECT_NEAR(by_default, reference, 0.05 * reference);
-  EXPECT_LT(soft, 0.9 * reference);
+  const PressFigures f = press_three(p, 256, 3);
+  EXPECT_GT(f.reference, 0.2);
+  EXPECT_NEAR(f.by_default, f.reference, 0.05 * f.reference);
+  EXPECT_LT(f.one_sweep, 0.9 * f.reference);
 }
 
 }  // namespace

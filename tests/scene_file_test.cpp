@@ -169,7 +169,7 @@ TEST(SceneFile, SuggestsByEditDistance) {
 
 TEST(SceneFile, ConsoleSettingsReachTheSession) {
   const ThoraxSceneParams p = parse_scene(
-      "[force_fascia]\nstiffness_n_per_m = 450\n[haptics]\nmotion_scale = 0.2\n"
+      "[force_fascia]\nstiffness_n_per_m = 450\nfriction = 0.35\n[haptics]\nmotion_scale = 0.2\n"
       "[devices]\nigtl_address = \"127.0.0.2\"\nright_tool = \"HookTracker\"\n",
       "console.toml");
   EXPECT_EQ(p.console.force[0].stiffness, 450);
@@ -188,6 +188,8 @@ TEST(SceneFile, ConsoleSettingsReachTheSession) {
   const session::SurgicalSession s = session::make_surgical_session(p, {});
   EXPECT_EQ(s.stations[0].arm.motion_scale, Real(0.2));
   EXPECT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::fascia)], 450);
+  // eq. 18's mu is also the friction of the instruments' contacts with that tissue.
+  EXPECT_EQ(s.params.proxy.friction[std::size_t(surgery::Tissue::fascia)], Real(0.35));
 }
 
 }  // namespace

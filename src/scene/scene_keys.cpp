@@ -66,7 +66,7 @@ constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, k
                RealRef([](P& p) { return &p.console.force[i].damping; }), 0.01, 1e3,             \
                "c_d of eq. 17, also the proxy's damper (> 0: 0 would make the tool rigid)"},     \
       SceneKey{table ".friction", RealRef([](P& p) { return &p.console.force[i].friction; }), 0, \
-               2, "mu of eq. 18"},                                                               \
+               2, "mu of eq. 18, also the instruments' contact friction"},                       \
       SceneKey{table ".cutting_resistance_n_s_per_m",                                            \
                RealRef([](P& p) { return &p.console.force[i].cutting_resistance; }), 0, 1e3,     \
                "k_c of eq. 18"},                                                                 \

@@ -72,10 +72,13 @@ SurfacePoint capsule_surface(const Capsule& capsule, const Vec3& x);
 SurfacePoint box_surface(const OrientedBox& box, const Vec3& x);
 
 struct ContactParams {
-  Real compliance = 0;                // alpha (unit: m/N); 0 = hard contact
-  Real static_friction = Real(0.6);   // mu_s
-  Real kinetic_friction = Real(0.4);  // mu_k
-  Real margin = Real(0.2e-3);         // kept between tool and tissue (unit: m)
+  Real compliance = 0;  // alpha (unit: m/N); 0 = hard contact
+  // mu_s, mu_k of the gathered rows. prepare_proxy_body replaces them with the touched tissue's
+  // eq. 18 mu (ProxyParams::friction); these stay for a particle of no tissue and for the
+  // after-step pass of resolve_tool_contacts.
+  Real static_friction = Real(0.6);
+  Real kinetic_friction = Real(0.4);
+  Real margin = Real(0.2e-3);  // kept between tool and tissue (unit: m)
 };
 
 struct ToolContact {
