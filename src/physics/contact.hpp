@@ -31,6 +31,9 @@ struct ContactRow {
   // Results of the step: the deepest penetration corrected in its last substep and the normal
   // impulse over the step (sum of m dn / h; / dt gives the mean force).
   Real depth = 0;  // (unit: m)
+  // How deep the particle was inside the surface when the step began: pushed out no faster than
+  // SolverParams::push_out_speed (unit: m).
+  Real start_depth = 0;
   // Within the substep: the normal correction so far and the tangential one friction made.
   Real substep_normal = 0, substep_friction = 0;  // (unit: m)
   Real normal_impulse = 0;                        // (unit: N s)
@@ -64,17 +67,24 @@ inline Real friction_share(ContactRow& c, Real dn, Real s) {
   return share;
 }
 
+// How far inside its surface a row may leave its particle at the end of a substep (unit: m): what
+// is left of the step's starting overlap after pushing it out at push_out_speed until then
+// (`pushed`, push_out_speed times the time since the step began).
+inline Real overlap_allowance(const ContactRow& c, Real pushed) {
+  return c.start_depth > pushed ? c.start_depth - pushed : Real(0);
+}
+
 // One projection (see above) against a kinematic surface. x_start: positions at the substep's
 // start; tau0, tau1: the substep's start and end as fractions of the step; h: the substep's
-// length (unit: s).
+// length (unit: s); allowance: overlap_allowance.
 inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const Real* w, Real tau0,
-                            Real tau1, Real h) {
+                            Real tau1, Real h, Real allowance = 0) {
   const Real wi = w[c.particle];
   if (wi == 0) return;
   Vec3& x = p[c.particle];
   const Vec3 motion = c.point1 - c.point0;
   const Vec3 q = c.point0 + tau1 * motion;
-  const Real gap = c.normal.dot(x - q) - c.margin;
+  const Real gap = c.normal.dot(x - q) - c.margin + allowance;
   if (!(gap < 0)) return;
   const Real dn = -gap;  // the normal correction (hard contact: all of it)
   x += dn * c.normal;
@@ -94,14 +104,15 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
 // same Coulomb cone as against a kinematic surface.
 // body_start: the body's offset at the substep's start.
 inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const Real* w,
-                            ProxyBody& body, const Vec3& body_start, Real tau0, Real tau1, Real h) {
+                            ProxyBody& body, const Vec3& body_start, Real tau0, Real tau1, Real h,
+                            Real allowance = 0) {
   const Real wi = w[c.particle];
   if (wi == 0) return;
   const Real wb = proxy_inverse_mass(body, h);
   Vec3& x = p[c.particle];
   const Vec3 motion = c.point1 - c.point0;
   const Vec3 q = c.point0 + tau1 * motion + body.carried();
-  const Real gap = c.normal.dot(x - q) - c.margin;
+  const Real gap = c.normal.dot(x - q) - c.margin + allowance;
   if (!(gap < 0)) return;
   const Real share = wi / (wi + wb);  // the particle's part of each correction
   const Real dn = -gap;               // the whole normal correction

@@ -208,18 +208,30 @@ std::span<Row> band_rows(std::vector<Row>& rows, std::size_t split, std::uint32_
 // update_velocities, so they are the friction's reference.
 // A row naming a proxy body shares its corrections with it (contact.hpp), against the body's
 // offset at the band's substep start.
-void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Real h) {
+// pushed: how far a starting overlap may have been pushed out by the substep's end (unit: m).
+void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Real h, Real pushed) {
   Particles& P = state.particles;
   for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
+    const Real allowance = overlap_allowance(c, pushed);
     if (c.body == kNoBody) {
       project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), tau0, tau1,
-                      h);
+                      h, allowance);
       continue;
     }
     IMASIM_ASSERT(c.body < state.proxies.size());
     ProxyBody& b = state.proxies[c.body];
     project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), b,
-                    band == 0 ? b.substep_start : b.coarse_start, tau0, tau1, h);
+                    band == 0 ? b.substep_start : b.coarse_start, tau0, tau1, h, allowance);
+  }
+}
+
+// Each row's overlap at the step's start: its particle against the plane where it began (a
+// body's offset has not moved yet).
+void measure_start_depths(State& state) {
+  const Vec3* x = state.particles.position.data();
+  for (ContactRow& c : state.contacts.rows) {
+    const Real gap = c.normal.dot(x[c.particle] - c.point0) - c.margin;
+    c.start_depth = gap < 0 ? -gap : Real(0);
   }
 }
 
@@ -338,6 +350,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   order_rows_by_band(model, state);
   for (ContactRow& c : state.contacts.rows)
     c.normal_impulse = 0;
+  measure_start_depths(state);
   for (ProxyBody& b : state.proxies) {
     keep_proxy_finite(b);
     b.step_start = b.coarse_start = b.offset;
@@ -365,6 +378,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       const Real tau1 = Real(s + 1) / Real(solver.substeps);
       const Real fine_tau0 = Real(s) / Real(solver.substeps);
       const Real coarse_tau0 = Real(s + 1 - stride) / Real(solver.substeps);
+      const Real pushed = solver.push_out_speed * tau1 * solver.dt;
       predict(model, state, plan, exec);
       profile[Stage::predict] += clock.lap();
       ConstraintSystem& cs = state.constraints;
@@ -383,13 +397,13 @@ StepResult step(const Model& model, State& state, Executor& exec) {
         project_band(cs, 0, fine, bending_active ? &fine_bending : nullptr, exec);
         project_follows(state, 0);
         profile[Stage::solve] += clock.lap();
-        project_contacts(state, 0, fine_tau0, tau1, plan.fine_h);
+        project_contacts(state, 0, fine_tau0, tau1, plan.fine_h, pushed);
         profile[Stage::contacts] += clock.lap();
         if (plan.coarse_active) {
           project_band(cs, 1, coarse, &coarse, exec);
           project_follows(state, 1);
           profile[Stage::solve] += clock.lap();
-          project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h);
+          project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h, pushed);
           profile[Stage::contacts] += clock.lap();
         }
         project_proxy_couplings(state, plan.fine_h);
@@ -399,7 +413,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
           project_band(cs, 0, fine, nullptr, exec);
           project_follows(state, 0);
           profile[Stage::solve] += clock.lap();
-          project_contacts(state, 0, fine_tau0, tau1, plan.fine_h);
+          project_contacts(state, 0, fine_tau0, tau1, plan.fine_h, pushed);
           profile[Stage::contacts] += clock.lap();
           project_proxy_couplings(state, plan.fine_h);
         }

@@ -57,6 +57,8 @@ std::string validate_model(const Model& model) {
   if (s.bending_stride < 1) return "solver.bending_stride must be at least 1";
   if (s.stretch_sweeps < 1) return "solver.stretch_sweeps must be at least 1";
   if (!(std::isfinite(s.max_speed) && s.max_speed > 0)) return "solver.max_speed must be > 0";
+  if (!(std::isfinite(s.push_out_speed) && s.push_out_speed > 0))
+    return "solver.push_out_speed must be > 0";
   if (model.objects.empty()) return "model has no object";
   for (const ObjectParams& o : model.objects) {
     if (!o.gravity.allFinite()) return "object '" + o.name + "': gravity must be finite";

@@ -143,6 +143,9 @@ const SceneKey kKeys[] = {
      "sweeps of the fine stretch rows and contacts per iteration (docs/physics.md)"},
     {"solver.max_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.max_speed; }), 1e-6, 1e6,
      "divergence guard: a faster particle fails the step"},
+    {"solver.push_out_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.push_out_speed; }),
+     1e-4, 100,
+     "how fast tissue found inside a surface at a step's start is pushed out (docs/physics.md)"},
 
     {"heart.beating", BoolRef([](P& p) { return &p.playback.beating; }), 0, 0,
      "false = the paper's static group"},
