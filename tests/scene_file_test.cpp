@@ -47,10 +47,12 @@ TEST(SceneFile, KeysNotGivenKeepTheirDefaults) {
   EXPECT_EQ(p.patch.fascia.nx, default_thorax_scene_params().patch.fascia.nx);
   const ThoraxSceneParams q = parse_scene(
       "[anatomy]\nsternum_position_m = [-0.03, 0.001, 0.002]\npatient_seed = 12\n"
-      "[ima_fat]\nseed = 7\n[solver]\nbending_stride = 1\nstretch_sweeps = 3\n",
+      "[ima_fat]\nseed = 7\n[solver]\nbending_stride = 1\nstretch_sweeps = 3\n"
+      "push_out_speed_m_per_s = 0.2\n",
       "s.toml");
   EXPECT_EQ(q.patch.solver.bending_stride, 1u);
   EXPECT_EQ(q.patch.solver.stretch_sweeps, 3u);
+  EXPECT_EQ(q.patch.solver.push_out_speed, 0.2);
   EXPECT_EQ(q.patch.solver.coarse_stride, default_thorax_scene_params().patch.solver.coarse_stride);
   EXPECT_EQ(q.anatomy.sternum_position, Vec3(-0.03, 0.001, 0.002));
   EXPECT_EQ(q.anatomy.patient_seed, 12u);
@@ -118,6 +120,9 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "bad.toml:2: key 'solver.bending_stride': expected an integer in [1, 1000], got 0"},
       {"[solver]\nstretch_sweeps = 5\n",
        "bad.toml:2: key 'solver.stretch_sweeps': expected an integer in [1, 4], got 5"},
+      {"[solver]\npush_out_speed_m_per_s = 0\n",
+       "bad.toml:2: key 'solver.push_out_speed_m_per_s': expected a number in [0.0001, 100], got "
+       "0"},
       {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1, 1]]\n",
        "bad.toml:2: key 'vessel.centerline_m': unknown key"},
       {"\n[fasica]\nnx = 3\n", "bad.toml:2: unknown table 'fasica'; did you mean 'fascia'?"},
