@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "physics/executor.hpp"
@@ -35,6 +36,12 @@ SessionInput hook_held_where_it_is(const SurgicalSession& s) {
   in.right.source = surgery::PoseSource::tool;
   in.right.pose = s.stations[1].pose;
   return in;
+}
+
+SurgicalSession session_with_a_still_heart() {
+  scene::ThoraxSceneParams params = scene::default_thorax_scene_params();
+  params.playback.beating = false;
+  return make_surgical_session(params, SessionParams{});
 }
 
 TEST(SurgicalSession, TheExampleScriptOpensGraspsCutsAndCoagulates) {
@@ -169,9 +176,7 @@ TEST(SurgicalSession, AnInstrumentTheHeartBeatsIntoRidesOnItsSurface) {
 // A hand that jumps to a pose beyond the heart (a tracker glitch, a clutch released far away):
 // the instrument goes as far as the heart lets it and no further, not through it.
 TEST(SurgicalSession, AnInstrumentDoesNotPassThroughTheHeart) {
-  scene::ThoraxSceneParams params = scene::default_thorax_scene_params();
-  params.playback.beating = false;
-  SurgicalSession s = make_surgical_session(params, SessionParams{});
+  SurgicalSession s = session_with_a_still_heart();
   physics::Executor exec(1);
   SessionInput in = hook_held_where_it_is(s);
   const Vec3 start = s.stations[1].pose.translation;
@@ -186,6 +191,48 @@ TEST(SurgicalSession, AnInstrumentDoesNotPassThroughTheHeart) {
     EXPECT_LT((hinge - start).norm(), (centre - start).norm()) << n;
   }
   EXPECT_TRUE(s.stations[1].blocked_by_heart);
+}
+
+// The hand presses the hook's device 4 mm past where the heart first stops it, and holds it: the
+// heart's rows stop the proxy inside the solve, so the proxy stays out of the heart and the
+// surface pushes the tool back with the coupling's spring, k o (what the hand feels, eq. 17).
+TEST(SurgicalSession, TheHeartPushesTheProxyBackWithTheCouplingsSpring) {
+  SurgicalSession s = session_with_a_still_heart();
+  physics::Executor exec(1);
+  SessionInput in = hook_held_where_it_is(s);
+  const Vec3 start = s.stations[1].pose.translation;
+  const Vec3 along = (s.scene.layout.heart_centre - start).normalized();
+  Vec3 device = start;
+  int n = 0;
+  for (; n < 400 && !s.stations[1].blocked_by_heart; ++n) {
+    device += Real(0.0002) * along;  // 40 mm/s
+    in.right.pose.translation = device;
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+  }
+  ASSERT_TRUE(s.stations[1].blocked_by_heart) << "the hook never reached the heart";
+  in.right.pose.translation = device + Real(0.004) * along;
+  for (int k = 0; k < 400; ++k)
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+  const Station& hook = s.stations[1];
+  EXPECT_TRUE(hook.blocked_by_heart);
+  EXPECT_EQ(hook.stop.tissue, surgery::Tissue::heart);
+  for (const Vec3& x : probe_points(hook, s.params.cautery.electrode_length))
+    EXPECT_GE(tissue::heart_signed_distance(s.scene.heart, x, 0.01),
+              s.params.tool_clearance * (1 - 1e-6));
+  // The proxy is held back millimetres from the device, and the force is its spring's, k o,
+  // within the coupling's splitting bias: k h / c (2 %, docs/haptics.md).
+  const physics::ProxyBody& body = s.scene.patch.world.state.proxies[1];
+  EXPECT_GT(hook.proxy.offset.norm(), 0.002);
+  EXPECT_LE(hook.proxy.offset.norm(), s.params.proxy.max_offset);
+  const physics::Model& model = s.scene.patch.world.model;
+  const Real h = model.solver.dt / Real(model.solver.substeps);
+  const Vec3 spring = body.stiffness * hook.proxy.offset;
+  EXPECT_LT((hook.proxy.tissue_force - spring).norm(),
+            body.stiffness * h / body.damping * spring.norm());
+  // The heart carries it (the whole force but the electrode's normal push on the fascia it also
+  // touches), pushing out along its normal.
+  const Vec3 heart = hook.proxy.tissue_force - hook.proxy.normal_force;
+  EXPECT_GT(heart.dot(hook.stop.normal), 0.9 * spring.norm());
 }
 
 TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {

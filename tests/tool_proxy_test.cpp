@@ -78,7 +78,7 @@ struct PressRig {
     world.state.contacts.clear();
     gather_tool_contacts(world.state.particles, tool, before, now, ContactParams{}, dt, kTag,
                          world.state.contacts);
-    prepare_proxy_body(params, proxy, world.state.contacts.rows, 0,
+    prepare_proxy_body(params, proxy, world.state.contacts.rows, {}, 0,
                        world.state.particles.object.data(), object_tissue.data(),
                        object_tissue.size(), world.state.proxies[0]);
     ASSERT_TRUE(tissue::step_tissue(world, exec).ok());
@@ -272,7 +272,7 @@ TEST(ToolProxy, EachRowTakesItsTissuesFriction) {
     rows[i].kinetic_friction = Real(0.4);
   }
   physics::ProxyBody body;
-  prepare_proxy_body(params, ProxyState{}, rows, 0, particle_object, object_tissue, 3, body);
+  prepare_proxy_body(params, ProxyState{}, rows, {}, 0, particle_object, object_tissue, 3, body);
   EXPECT_EQ(rows[0].static_friction, Real(0.25));
   EXPECT_EQ(rows[0].kinetic_friction, Real(0.25));
   EXPECT_EQ(rows[1].static_friction, Real(0.05));

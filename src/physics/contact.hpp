@@ -54,7 +54,9 @@ struct ContactSet {
 // correction accumulated so far, and kinetic friction removes no more in all than mu_k times it.
 // Against one projection's dn alone, every projection after the first would see a small residual
 // dn against the whole slip and let go. With one projection per substep this is the plain bound.
-inline Real friction_share(ContactRow& c, Real dn, Real s) {
+// The fields it uses are a ContactRow's and a BodyStopRow's alike.
+template <class Row>
+inline Real friction_share(Row& c, Real dn, Real s) {
   c.substep_normal += dn;
   if (s < c.static_friction * c.substep_normal) {  // static: it moves with the surface
     c.substep_friction += s;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "physics/body_stop.hpp"
 #include "physics/constraint_system.hpp"
 #include "physics/contact.hpp"
 #include "physics/follow.hpp"
@@ -43,6 +44,8 @@ struct State {
   ContactSet contacts;  // gathered before each step by the surfaces' owners, projected in it
   // The instruments' proxies (proxy_body.hpp), named by contact rows; set by their owner.
   std::vector<ProxyBody> proxies;
+  // The heart and the chest wall stopping those bodies (body_stop.hpp); gathered by their owner.
+  std::vector<BodyStopRow> body_stops;
   // With SolverParams::bending_stride > 1, a fine particle's stored velocity is its mean over
   // the step's last bending group (stride substeps): the velocity of the last substep alone
   // carries the strided bending's impulse in the substep that applies it, a saw-tooth of about

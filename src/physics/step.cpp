@@ -235,10 +235,17 @@ void measure_start_depths(State& state) {
   }
 }
 
-// The proxies' couplings to their devices, after each iteration's contacts (fine substep h).
-void project_proxy_couplings(State& state, Real h) {
+// The proxies' couplings to their devices, after each iteration's contacts (fine substep h),
+// then the surfaces that stop them (the heart, the chest wall): those have the last word, so
+// the coupling's pull and its bound never leave a proxy inside them.
+void project_proxy_couplings(State& state, Real h, Real tau0, Real tau1) {
   for (ProxyBody& b : state.proxies)
     project_proxy_coupling(b, h);
+  for (BodyStopRow& r : state.body_stops) {
+    IMASIM_ASSERT(r.body < state.proxies.size());
+    ProxyBody& b = state.proxies[r.body];
+    project_body_stop(r, b, b.substep_start, tau0, tau1);
+  }
 }
 
 // The follow rows whose destination is in `band`, in order.
@@ -269,6 +276,11 @@ void reset_contact_depths(State& state, std::uint32_t band) {
   for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
     c.depth = 0;
     c.substep_normal = c.substep_friction = 0;
+  }
+  if (band != 0) return;
+  for (BodyStopRow& r : state.body_stops) {  // the bodies move in the fine substeps
+    r.depth = 0;
+    r.substep_normal = r.substep_friction = 0;
   }
 }
 
@@ -350,6 +362,8 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   order_rows_by_band(model, state);
   for (ContactRow& c : state.contacts.rows)
     c.normal_impulse = 0;
+  for (BodyStopRow& r : state.body_stops)
+    r.normal_impulse = 0;
   measure_start_depths(state);
   for (ProxyBody& b : state.proxies) {
     keep_proxy_finite(b);
@@ -406,7 +420,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
           project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h, pushed);
           profile[Stage::contacts] += clock.lap();
         }
-        project_proxy_couplings(state, plan.fine_h);
+        project_proxy_couplings(state, plan.fine_h, fine_tau0, tau1);
         // Further sweeps of the fine band's stiff rows, their lambdas accumulating: stretch,
         // attachments and what they act against (contacts, the proxies' coupling), not bending.
         for (std::uint32_t sweep = 1; sweep < solver.stretch_sweeps; ++sweep) {
@@ -415,7 +429,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
           profile[Stage::solve] += clock.lap();
           project_contacts(state, 0, fine_tau0, tau1, plan.fine_h, pushed);
           profile[Stage::contacts] += clock.lap();
-          project_proxy_couplings(state, plan.fine_h);
+          project_proxy_couplings(state, plan.fine_h, fine_tau0, tau1);
         }
       }
       const std::uint32_t bad = update_velocities(model, state, plan, exec);

@@ -117,6 +117,13 @@ std::string validate_state(const Model& model, State& state) {
       return "a proxy body is not finite";
     }
   }
+  for (const BodyStopRow& r : state.body_stops) {
+    if (r.body >= state.proxies.size()) return "a surface stop refers to a missing proxy body";
+    if (!r.point0.allFinite() || !r.point1.allFinite() || !r.surface0.allFinite() ||
+        !r.surface1.allFinite() || !r.normal.allFinite()) {
+      return "a surface stop is not finite";
+    }
+  }
   for (const FollowRow& f : state.follows) {
     if (f.source >= state.particles.size() || f.destination >= state.particles.size()) {
       return "a coupling row refers to a missing particle";

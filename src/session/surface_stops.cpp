@@ -210,8 +210,6 @@ void stop_at_surfaces(SurgicalSession& s, Station& st) {
   st.blocked_by_heart = heart;
   st.blocked_by_wall = wall;
   st.stop = surface_stop(s, st, heart);
-  // It rests there until the hand moves it on (robotic_arm.hpp: the arm's tool pose).
-  st.arm_state.tool = st.state.controller;
 }
 
 }  // namespace imasim::session

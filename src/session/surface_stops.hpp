@@ -1,8 +1,9 @@
 #pragma once
-// The instruments stop at the heart's surface and the chest wall (a god-object, SPEC S5): their
-// probe points (the hinge and the tips) keep `tool_clearance` from both. A commanded motion goes
-// as far as the surfaces let it and slides along the surface it meets; a surface that moves into
-// an instrument (the beating heart) pushes it out along its normal.
+// The guard that keeps the instruments' proxies out of the heart and the chest wall before a step
+// (a god-object, SPEC S5): their probe points (the hinge and the tips) keep `tool_clearance` from
+// both. A commanded motion goes as far as the surfaces let it and slides along the surface it
+// meets; a surface that moved into an instrument (the beating heart) pushes it out along its
+// normal. Within the step the rows of surface_stop_rows.hpp stop the proxy and make the force.
 #include <array>
 
 #include "session/surgical_session.hpp"

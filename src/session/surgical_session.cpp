@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "math/stopwatch.hpp"
+#include "session/surface_stop_rows.hpp"
 #include "session/surface_stops.hpp"
 #include "tissue/tissue_step.hpp"
 
@@ -62,7 +63,20 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
                           st.state);
   st.pose = surgery::world_pose(st.instrument, st.state);
 
+  // The guard moves the proxy, not the hand's device: its offset takes the correction, within the
+  // coupling's bound (beyond it the arm holds the device back, the bound's length behind).
+  const Vec3 before = st.state.controller.translation;
   stop_at_surfaces(s, st);
+  const Vec3 moved = st.state.controller.translation - before;
+  if (moved.squaredNorm() > 0) {
+    st.proxy.offset += moved;
+    const Real length = st.proxy.offset.norm();
+    const Real bound = s.params.proxy.max_offset;
+    if (length > bound) {
+      st.proxy.offset *= bound / length;
+      st.device.translation = st.state.controller.translation - st.proxy.offset;
+    }
+  }
 }
 
 void build_geometry(SurgicalSession& s, Station& st, bool holding) {
@@ -306,17 +320,26 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   profile[physics::Stage::cutting] += clock.lap();
   scene::prepare_thorax_step(s.scene, profile);
   clock.lap();
+  // The heart and the wall stop the proxies inside the solve too: station k's rows are
+  // [stop_first[k], stop_first[k + 1]).
+  std::array<std::size_t, 3> stop_first{};
+  w.state.body_stops.clear();
   for (std::uint8_t k = 0; k < 2; ++k) {
     Station& st = s.stations[k];
     build_geometry(s, st, k == 0 && held > 0);
     const std::size_t first = w.state.contacts.rows.size();
     surgery::gather_tool_contacts(w.state.particles, st.geometry, st.previous_pose, st.pose,
                                   s.params.contact, dt, kToolContactTag + k, w.state.contacts);
+    gather_surface_stop_rows(s, st, k, w.state.body_stops);
+    stop_first[k + 1] = w.state.body_stops.size();
     // Its rows are two-body contacts with its proxy, so the tissue stops it inside the solve.
     std::span<physics::ContactRow> rows(w.state.contacts.rows.data() + first,
                                         w.state.contacts.rows.size() - first);
-    surgery::prepare_proxy_body(s.params.proxy, st.proxy, rows, k, w.state.particles.object.data(),
-                                s.object_tissue.data(), s.object_tissue.size(), w.state.proxies[k]);
+    std::span<const physics::BodyStopRow> stops(w.state.body_stops.data() + stop_first[k],
+                                                stop_first[k + 1] - stop_first[k]);
+    surgery::prepare_proxy_body(s.params.proxy, st.proxy, rows, stops, k,
+                                w.state.particles.object.data(), s.object_tissue.data(),
+                                s.object_tissue.size(), w.state.proxies[k]);
   }
   profile[physics::Stage::contacts] += clock.lap();
   physics::StepResult r = scene::finish_thorax_step(s.scene, exec);
@@ -347,6 +370,11 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     // The tool ended the step where the solve left its proxy: the local model's reference and
     // the next step's motion start there (the pose keeps the surfaces' stop until then).
     st.carried = w.state.proxies[k].carried();
+    note_surface_stop_rows(
+        st,
+        std::span<const physics::BodyStopRow>(w.state.body_stops.data() + stop_first[k],
+                                              stop_first[k + 1] - stop_first[k]),
+        st.carried, dt);
     st.state.controller.translation += st.carried;
     surgery::translate_tool_geometry(st.geometry, st.carried);
     surgery::finish_proxy_step(s.params.proxy, w.state.proxies[k], dt, normal_push, pressed, pull,

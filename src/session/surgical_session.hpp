@@ -48,8 +48,9 @@ struct SessionParams {
   surgery::ProxyParams proxy;
 };
 
-// Where the heart or the chest wall stopped an instrument this step (the god-object stop): the
-// stopped probe point, the surface's outward normal there, and which one.
+// Where the heart or the chest wall stopped an instrument this step (the rows that stop its proxy
+// inside the solve, else the god-object guard before it): the stopped probe point, the surface's
+// outward normal there, and which one.
 struct SurfaceStop {
   surgery::Tissue tissue = surgery::Tissue::none;  // none: not stopped
   Vec3 point = Vec3::Zero();                       // (unit: m)

@@ -43,7 +43,8 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
 }
 
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
-                        std::span<physics::ContactRow> rows, std::uint32_t body_index,
+                        std::span<physics::ContactRow> rows,
+                        std::span<const physics::BodyStopRow> stops, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
                         std::size_t object_count, physics::ProxyBody& body) {
   std::array<Real, kTissueCount> count{};
@@ -53,6 +54,9 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
     count[std::size_t(touched)] += 1;
     if (touched == Tissue::none) continue;
     c.static_friction = c.kinetic_friction = params.friction[std::size_t(touched)];
+  }
+  for (const physics::BodyStopRow& r : stops) {
+    if (r.tag < std::uint32_t(kTissueCount)) count[r.tag] += 1;
   }
   Tissue tissue = largest(count);
   if (tissue == Tissue::none) tissue = state.pressed;

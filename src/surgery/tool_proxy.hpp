@@ -2,14 +2,15 @@
 // The tool proxy (virtual coupling, SPEC S5 reading; issue 13): the instrument in the physics is
 // not where the hand puts it but a proxy coupled to that "device pose" by eq. 17's spring and
 // damper (k_d, c_d of the tissue it presses), and stopped by what it touches. The heart and the
-// chest wall stop it outright (the session's god-object stop). Deformable tissue stops it inside
-// the solve: the proxy is a physics::ProxyBody whose offset o from the device is an unknown of the
-// step, and the instrument's contact rows are two-body constraints with it, so the tissue's
-// reaction pushes the proxy back in the same substeps in which the tool pushes the tissue
-// (physics/proxy_body.hpp). At rest k o is the force the tissue pushes the tool with, and eq. 17's
-// d is the depth of the device past the proxy along the contact normal: k d is what both the
-// hand and the tissue feel. With nothing touched the proxy returns to the device pose (time
-// constant c / k, 7 ms for the fascia).
+// chest wall stop it inside the solve as well, through rows between the body and their surfaces
+// (physics/body_stop.hpp; the session's god-object stop before the step guards only against a
+// motion through them). Deformable tissue stops it inside the solve: the proxy is a
+// physics::ProxyBody whose offset o from the device is an unknown of the step, and the instrument's
+// contact rows are two-body constraints with it, so the tissue's reaction pushes the proxy back in
+// the same substeps in which the tool pushes the tissue (physics/proxy_body.hpp). At rest k o is
+// the force the tissue pushes the tool with, and eq. 17's d is the depth of the device past the
+// proxy along the contact normal: k d is what both the hand and the tissue feel. With nothing
+// touched the proxy returns to the device pose (time constant c / k, 7 ms for the fascia).
 //
 // Held tissue pulls the forceps through the grasp's attachments, which the solve projects in
 // parallel colours and which therefore do not name the body. That pull moves the spring's rest
@@ -24,6 +25,7 @@
 #include <span>
 
 #include "math/types.hpp"
+#include "physics/body_stop.hpp"
 #include "physics/contact.hpp"
 #include "physics/particles.hpp"
 #include "physics/proxy_body.hpp"
@@ -68,13 +70,15 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
                           const physics::ObjectId* particle_object, const Tissue* object_tissue,
                           std::size_t object_count, std::uint32_t tag, Real dt, Tissue& pressed);
 
-// Before a step, with the instrument's contact rows gathered (`rows`): they name the body
-// (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
-// them touch (with none, of the tissue pressed in the last step; with none either, the
+// Before a step, with the instrument's contact rows gathered (`rows`) and the rows that stop it at
+// the heart and the wall (`stops`, tagged with their Tissue): the contact rows name the body
+// (`body_index` in the state's proxies), and the body takes the coupling of the tissue most rows
+// of either kind touch (with none, of the tissue pressed in the last step; with none either, the
 // fascia's), the bound, the held pull's rest and the offset the proxy ended the last step with.
-// Each row takes its own tissue's friction (a particle of no tissue keeps the row's).
+// Each contact row takes its own tissue's friction (a particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
-                        std::span<physics::ContactRow> rows, std::uint32_t body_index,
+                        std::span<physics::ContactRow> rows,
+                        std::span<const physics::BodyStopRow> stops, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
                         std::size_t object_count, physics::ProxyBody& body);
 

@@ -1,0 +1,99 @@
+#include "session/surface_stop_rows.hpp"
+
+#include "geometry/closest_point.hpp"
+#include "session/surface_stops.hpp"
+
+namespace imasim::session {
+namespace {
+
+using surgery::Tissue;
+
+// Reach of the gathering beyond the clearance, the probe's own travel and the proxy's distance
+// from the device (which the coupling may take it back over within the step) (unit: m).
+constexpr Real kStopReach = Real(0.002);
+
+void add_heart_rows(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real reach,
+                    std::uint32_t body, std::vector<physics::BodyStopRow>& out) {
+  tissue::HeartField& h = s.scene.heart;
+  tissue::nearest_per_component(h, x1, reach);
+  const auto& tris = h.model.topology.triangles;
+  for (const tissue::HeartField::Nearest& n : h.nearest) {
+    if (n.triangle == tissue::HeartField::kNone || n.signed_distance > reach) continue;
+    const auto& t = tris[n.triangle];
+    const geometry::TrianglePoint q =
+        geometry::closest_point_on_triangle(x1, h.current[t[0]], h.current[t[1]], h.current[t[2]]);
+    physics::BodyStopRow r;
+    r.body = body;
+    r.tag = static_cast<std::uint32_t>(Tissue::heart);
+    r.point0 = x0;
+    r.point1 = x1;
+    r.surface1 = q.point;
+    r.surface0 =
+        q.bary[0] * h.previous[t[0]] + q.bary[1] * h.previous[t[1]] + q.bary[2] * h.previous[t[2]];
+    r.normal = n.normal;
+    r.margin = s.params.tool_clearance;
+    r.static_friction = r.kinetic_friction =
+        s.params.proxy.friction[static_cast<std::size_t>(Tissue::heart)];
+    out.push_back(r);
+  }
+}
+
+void add_wall_row(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real reach,
+                  std::uint32_t body, std::vector<physics::BodyStopRow>& out) {
+  const geometry::CylinderPatchSpec& wall = s.scene.layout.wall;
+  const Vec3 axis = wall.axis.normalized();
+  const Vec3 r = x1 - wall.origin;
+  const Vec3 radial = r - r.dot(axis) * axis;
+  const Real distance = radial.norm();
+  if (distance < wall.radius - reach || !(distance > 0)) return;
+  const Vec3 outward = radial / distance;
+  physics::BodyStopRow row;
+  row.body = body;
+  row.tag = static_cast<std::uint32_t>(Tissue::chest_wall);
+  row.point0 = x0;
+  row.point1 = x1;
+  row.surface0 = row.surface1 = wall.origin + r.dot(axis) * axis + wall.radius * outward;
+  row.normal = -outward;  // the cavity's side
+  row.margin = s.params.tool_clearance;
+  row.static_friction = row.kinetic_friction =
+      s.params.proxy.friction[static_cast<std::size_t>(Tissue::chest_wall)];
+  out.push_back(row);
+}
+
+}  // namespace
+
+void gather_surface_stop_rows(SurgicalSession& s, const Station& st, std::uint32_t body,
+                              std::vector<physics::BodyStopRow>& out) {
+  const Real electrode = s.params.cautery.electrode_length;
+  // The probe points where the step ends, and the same points of the tool where it began (its
+  // jaws' opening as it ends: they turn little within a step).
+  const Pose& end = st.pose;
+  const Pose& start = st.previous_pose;
+  for (const Vec3& x1 : probe_points(st, electrode)) {
+    const Vec3 x0 =
+        start.translation + start.rotation * (end.rotation.transpose() * (x1 - end.translation));
+    const Real reach =
+        s.params.tool_clearance + kStopReach + (x1 - x0).norm() + st.proxy.offset.norm();
+    add_heart_rows(s, x0, x1, reach, body, out);
+    add_wall_row(s, x0, x1, reach, body, out);
+  }
+}
+
+void note_surface_stop_rows(Station& st, std::span<const physics::BodyStopRow> rows,
+                            const Vec3& carried, Real dt) {
+  const physics::BodyStopRow* most = nullptr;
+  for (const physics::BodyStopRow& r : rows) {
+    if (!(r.normal_impulse > 0)) continue;
+    const bool heart = r.tag == static_cast<std::uint32_t>(Tissue::heart);
+    st.blocked_by_heart = st.blocked_by_heart || heart;
+    st.blocked_by_wall = st.blocked_by_wall || !heart;
+    if (most == nullptr || r.normal_impulse > most->normal_impulse) most = &r;
+  }
+  if (most == nullptr) return;
+  st.stop.tissue = static_cast<Tissue>(most->tag);
+  st.stop.point = most->point1 + carried;
+  st.stop.normal = most->normal;
+  st.stop.velocity = dt > 0 ? Vec3((most->surface1 - most->surface0) / dt) : Vec3::Zero();
+}
+
+}  // namespace imasim::session
