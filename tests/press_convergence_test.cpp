@@ -84,7 +84,7 @@ Real press_force(const Press& press) {
     const Vec3 normal = surgery::tissue_force_on_tool(
         world.state.contacts, world.state.particles.object.data(), object_tissue.data(),
         object_tissue.size(), kTag, dt, pressed);
-    surgery::finish_proxy_step(params, world.state.proxies[0], dt, normal, pressed, Vec3::Zero(),
+    surgery::finish_proxy_step(world.state.proxies[0], dt, normal, pressed, Vec3::Zero(),
                                Tissue::none, proxy);
     force = press.proxy ? proxy.tissue_force : normal;
     previous = at + world.state.proxies[0].carried();

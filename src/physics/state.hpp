@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "physics/body_attachment.hpp"
 #include "physics/body_stop.hpp"
 #include "physics/constraint_system.hpp"
 #include "physics/contact.hpp"
@@ -34,8 +35,9 @@ struct StepScratch {
   std::vector<ObjectRange> object_ranges;       // per object, for per-object passes
   std::vector<std::uint32_t> block_first_bad;   // per particle chunk: first diverging particle
   std::vector<std::uint32_t> validation_stamp;  // per particle, for invariant checks
-  // Contact and follow rows are ordered band 0 first at the start of a step; band 1 starts here.
-  std::size_t contact_split = 0, follow_split = 0;
+  // Contact, follow and body attachment rows are ordered band 0 first at the start of a step; band
+  // 1 starts here.
+  std::size_t contact_split = 0, follow_split = 0, body_attachment_split = 0;
 };
 
 struct State {
@@ -46,6 +48,8 @@ struct State {
   std::vector<ProxyBody> proxies;
   // The heart and the chest wall stopping those bodies (body_stop.hpp); gathered by their owner.
   std::vector<BodyStopRow> body_stops;
+  // Particles held by those bodies (body_attachment.hpp: the grasp); set by their owner.
+  std::vector<BodyAttachmentRow> body_attachments;
   // With SolverParams::bending_stride > 1, a fine particle's stored velocity is its mean over
   // the step's last bending group (stride substeps): the velocity of the last substep alone
   // carries the strided bending's impulse in the substep that applies it, a saw-tooth of about

@@ -190,6 +190,11 @@ void order_rows_by_band(const Model& model, State& state) {
       std::partition(contacts.begin(), contacts.end(),
                      [&](const ContactRow& c) { return fine(c.particle); }) -
       contacts.begin());
+  auto& held = state.body_attachments;
+  state.scratch.body_attachment_split = static_cast<std::size_t>(
+      std::partition(held.begin(), held.end(),
+                     [&](const BodyAttachmentRow& r) { return fine(r.particle); }) -
+      held.begin());
   auto& follows = state.follows;
   state.scratch.follow_split = static_cast<std::size_t>(
       std::partition(follows.begin(), follows.end(),
@@ -204,7 +209,8 @@ std::span<Row> band_rows(std::vector<Row>& rows, std::size_t split, std::uint32_
                    : std::span<Row>(rows.data() + split, rows.size() - split);
 }
 
-// The contacts of one band, in order. Positions hold the substep's start until
+// The contacts of one band, in order, then the particles proxy bodies hold (body_attachment.hpp).
+// Positions hold the substep's start until
 // update_velocities, so they are the friction's reference.
 // A row naming a proxy body shares its corrections with it (contact.hpp), against the body's
 // offset at the band's substep start.
@@ -222,6 +228,12 @@ void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Re
     ProxyBody& b = state.proxies[c.body];
     project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), b,
                     band == 0 ? b.substep_start : b.coarse_start, tau0, tau1, h, allowance);
+  }
+  // The particles the bodies hold, after their contacts: one body, so serially, in order.
+  for (BodyAttachmentRow& r :
+       band_rows(state.body_attachments, state.scratch.body_attachment_split, band)) {
+    IMASIM_ASSERT(r.particle < P.size() && r.body < state.proxies.size());
+    project_body_attachment(r, P.predicted.data(), P.inverse_mass.data(), state.proxies[r.body], h);
   }
 }
 
@@ -277,6 +289,9 @@ void reset_contact_depths(State& state, std::uint32_t band) {
     c.depth = 0;
     c.substep_normal = c.substep_friction = 0;
   }
+  for (BodyAttachmentRow& r :
+       band_rows(state.body_attachments, state.scratch.body_attachment_split, band))
+    r.lambda = Vec3::Zero();
   if (band != 0) return;
   for (BodyStopRow& r : state.body_stops) {  // the bodies move in the fine substeps
     r.depth = 0;

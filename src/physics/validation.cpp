@@ -124,6 +124,12 @@ std::string validate_state(const Model& model, State& state) {
       return "a surface stop is not finite";
     }
   }
+  for (const BodyAttachmentRow& r : state.body_attachments) {
+    if (r.particle >= state.particles.size())
+      return "a body's attachment refers to a missing particle";
+    if (r.body >= state.proxies.size()) return "a body's attachment refers to a missing proxy body";
+    if (!r.target.allFinite() || !(r.compliance >= 0)) return "a body's attachment is not finite";
+  }
   for (const FollowRow& f : state.follows) {
     if (f.source >= state.particles.size() || f.destination >= state.particles.size()) {
       return "a coupling row refers to a missing particle";

@@ -149,6 +149,7 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
   tissue::TissueWorld& w = s.scene.patch.world;
   const tissue::ThoracicPatch& patch = s.scene.patch;
   s.grasper = surgery::make_grasper(w, params.grasp);
+  s.grasper.body = 0;  // the forceps' proxy: held tissue pulls it inside the solve
 
   s.object_tissue.assign(w.model.objects.size(), Tissue::none);
   s.object_tissue[w.meshes[patch.wall].object] = Tissue::chest_wall;
@@ -358,15 +359,6 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     const Vec3 normal_push = surgery::tissue_force_on_tool(
         w.state.contacts, w.state.particles.object.data(), s.object_tissue.data(),
         s.object_tissue.size(), kToolContactTag + k, dt, pressed);
-    Vec3 pull = Vec3::Zero();
-    surgery::Tissue pulled_by = surgery::Tissue::none;
-    if (k == 0 && !s.grasper.held.empty()) {
-      // Held tissue pulls on the jaws (their attachments' targets were set where the step began):
-      // retracting it is felt, and the proxy gives way to it.
-      pull = surgery::grasp_force_on_jaws(w.state.particles, s.params.grasp,
-                                          surgery::world_pose(st.instrument, st.state), s.grasper);
-      pulled_by = tissue_of_particle(s, s.grasper.held.front().particle);
-    }
     // The tool ended the step where the solve left its proxy: the local model's reference and
     // the next step's motion start there (the pose keeps the surfaces' stop until then).
     st.carried = w.state.proxies[k].carried();
@@ -375,10 +367,20 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
         std::span<const physics::BodyStopRow>(w.state.body_stops.data() + stop_first[k],
                                               stop_first[k + 1] - stop_first[k]),
         st.carried, dt);
+    Vec3 pull = Vec3::Zero();
+    surgery::Tissue pulled_by = surgery::Tissue::none;
+    if (k == 0 && !s.grasper.held.empty()) {
+      // Held tissue pulls on the jaws (their attachments ride on the proxy, which it moved inside
+      // the solve): the attachments' stretch where the step left the jaws.
+      Pose jaws = surgery::world_pose(st.instrument, st.state);
+      jaws.translation += st.carried;
+      pull = surgery::grasp_force_on_jaws(w.state.particles, s.params.grasp, jaws, s.grasper);
+      pulled_by = tissue_of_particle(s, s.grasper.held.front().particle);
+    }
     st.state.controller.translation += st.carried;
     surgery::translate_tool_geometry(st.geometry, st.carried);
-    surgery::finish_proxy_step(s.params.proxy, w.state.proxies[k], dt, normal_push, pressed, pull,
-                               pulled_by, st.proxy);
+    surgery::finish_proxy_step(w.state.proxies[k], dt, normal_push, pressed, pull, pulled_by,
+                               st.proxy);
     const surgery::ContactSummary missed =
         surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
                                        st.geometry, s.params.contact, dt, s.contacts);

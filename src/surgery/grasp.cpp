@@ -14,7 +14,7 @@ namespace {
 
 void release(tissue::TissueWorld& world, Grasper& g) {
   for (const Grasper::Hold& h : g.held) {
-    world.state.constraints.attachment.remove(h.attachment);
+    if (g.body == physics::kNoBody) world.state.constraints.attachment.remove(h.attachment);
     if (h.particle < world.held.size()) world.held[h.particle] = 0;
   }
   g.held.clear();
@@ -42,9 +42,12 @@ void grasp(tissue::TissueWorld& world, const GraspParams& params, const Instrume
       if (std::abs(q.y()) > params.capture_thickness) continue;
       const Vec3 local(q.x(), 0, q.z());  // pinched onto the jaws' plane
       if (i < world.held.size()) world.held[i] = 1;
-      g.held.push_back(
-          {i, physics::add_attachment(world.state.constraints, P, i, tool.apply(local), g.material),
-           local});
+      Grasper::Hold hold{i, {}, local};
+      if (g.body == physics::kNoBody) {
+        hold.attachment =
+            physics::add_attachment(world.state.constraints, P, i, tool.apply(local), g.material);
+      }
+      g.held.push_back(hold);
     }
   }
   g.holding = true;
@@ -58,8 +61,15 @@ std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params
   if (state.closed && !g.was_closed && !g.holding) grasp(world, params, inst, tool, g);
   if (!state.closed && g.holding) release(world, g);
   g.was_closed = state.closed;
+  if (g.body == physics::kNoBody) {
+    for (const Grasper::Hold& h : g.held)
+      physics::set_attachment_target(world.state.constraints, h.attachment, tool.apply(h.local));
+    return static_cast<std::uint32_t>(g.held.size());
+  }
+  auto& rows = world.state.body_attachments;
+  rows.clear();
   for (const Grasper::Hold& h : g.held)
-    physics::set_attachment_target(world.state.constraints, h.attachment, tool.apply(h.local));
+    rows.push_back({h.particle, g.body, tool.apply(h.local), params.compliance, Vec3::Zero()});
   return static_cast<std::uint32_t>(g.held.size());
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "physics/constraint_system.hpp"
+#include "physics/proxy_body.hpp"
 #include "surgery/instrument.hpp"
 #include "tissue/tissue_world.hpp"
 
@@ -27,12 +28,17 @@ struct GraspParams {
 
 struct Grasper {
   physics::MaterialId material = 0;
+  // The proxy body the jaws belong to (physics::State::proxies), or none. With a body the holds
+  // are the state's body attachments (physics/body_attachment.hpp: the held tissue pulls the
+  // proxy inside the solve; the grasper owns that list); without, attachment rows of the
+  // constraint system towards kinematic targets.
+  std::uint32_t body = physics::kNoBody;
   bool holding = false;
   bool was_closed = true;
   struct Hold {
     std::uint32_t particle = 0;
-    physics::AttachmentHandle attachment;
-    Vec3 local = Vec3::Zero();  // target in the tool frame (unit: m)
+    physics::AttachmentHandle attachment;  // without a body
+    Vec3 local = Vec3::Zero();             // target in the tool frame (unit: m)
   };
   std::vector<Hold> held;
 };
@@ -41,7 +47,8 @@ struct Grasper {
 Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params);
 
 // Once per step, after the instrument's pose and jaws are updated: grasps on closing, releases
-// on opening, moves the held particles' targets with the jaws. Returns the number held.
+// on opening, moves the held particles' targets with the jaws (with a body, rewrites the state's
+// body attachments). Returns the number held.
 std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params,
                            const InstrumentParams& instrument, const InstrumentState& state,
                            Grasper& grasper);

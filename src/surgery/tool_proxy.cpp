@@ -64,45 +64,18 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
   body.stiffness = params.stiffness[std::size_t(tissue)];
   body.damping = params.damping[std::size_t(tissue)];
   body.max_offset = params.max_offset;
-  body.rest = state.rest;
+  body.rest = Vec3::Zero();
   body.offset = state.offset;
 }
 
-void relax_held_pull(const ProxyParams& params, const Vec3& pull, Tissue pull_tissue,
-                     ProxyState& state) {
-  const Vec3 force = pull.allFinite() ? pull : Vec3::Zero();
-  // Secant estimate of the held tissue's stiffness along o_rest's last change:
-  // k_t = -dF.do/|do|^2 (unit: N/m), only from changes large enough to measure.
-  constexpr Real kMeasurable = Real(1e-7);  // (unit: m)
-  // It decays only as new measurements come: at rest (no measurable change) it holds.
-  Real k_t = state.pull_stiffness;
-  const Real moved = state.last_change.squaredNorm();
-  if (moved > kMeasurable * kMeasurable) {
-    const Real secant = -(force - state.pull).dot(state.last_change) / moved;
-    if (std::isfinite(secant)) k_t = std::max(params.stiffness_memory * k_t, secant);
-  }
-  state.pull_stiffness = k_t;
-  state.pull = force;
-  const Real k = params.stiffness[std::size_t(pull_tissue)];
-  const Vec3 balance = pull_tissue == Tissue::none || !(k > 0) ? Vec3::Zero() : Vec3(force / k);
-  const Real r = k > 0 ? std::min(params.relaxation, k / (k + k_t)) : params.relaxation;
-  const Vec3 before = state.rest;
-  state.rest += r * (balance - state.rest);
-  const Real length = state.rest.norm();
-  if (length > params.max_offset) state.rest *= params.max_offset / length;
-  state.last_change = state.rest - before;
-}
-
-void finish_proxy_step(const ProxyParams& params, const physics::ProxyBody& body, Real dt,
-                       const Vec3& normal_push, Tissue pressed, const Vec3& pull,
-                       Tissue pull_tissue, ProxyState& state) {
+void finish_proxy_step(const physics::ProxyBody& body, Real dt, const Vec3& normal_push,
+                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state) {
   state.offset = body.offset.allFinite() ? body.offset : Vec3::Zero();
-  const Vec3 contact = dt > 0 && body.impulse.allFinite() ? Vec3(body.impulse / dt) : Vec3::Zero();
-  const Vec3 held = pull.allFinite() ? pull : Vec3::Zero();
-  state.tissue_force = contact + held;
-  state.normal_force = (normal_push.allFinite() ? normal_push : Vec3::Zero()) + held;
-  state.pressed = held.squaredNorm() > contact.squaredNorm() ? pull_tissue : pressed;
-  relax_held_pull(params, held, pull_tissue, state);
+  state.tissue_force = dt > 0 && body.impulse.allFinite() ? Vec3(body.impulse / dt) : Vec3::Zero();
+  state.pull = pull.allFinite() ? pull : Vec3::Zero();
+  state.normal_force = (normal_push.allFinite() ? normal_push : Vec3::Zero()) + state.pull;
+  const Vec3 rest_of_it = state.tissue_force - state.pull;
+  state.pressed = state.pull.squaredNorm() > rest_of_it.squaredNorm() ? pull_tissue : pressed;
 }
 
 }  // namespace imasim::surgery

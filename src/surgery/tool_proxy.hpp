@@ -12,14 +12,9 @@
 // proxy along the contact normal: k d is what both the hand and the tissue feel. With nothing
 // touched the proxy returns to the device pose (time constant c / k, 7 ms for the fascia).
 //
-// Held tissue pulls the forceps through the grasp's attachments, which the solve projects in
-// parallel colours and which therefore do not name the body. That pull moves the spring's rest
-// o_rest, one step behind: a staggered fixed-point iteration toward o_rest = F_pull / k, which
-// converges only while its relaxation r < 2 / (1 + k_t / k) (k_t the held tissue's local
-// stiffness) and fastest at r = 1 / (1 + k_t / k). Tissue held taut is far stiffer than k, so
-// r = min(relaxation, k / (k + k_t)) with k_t estimated each step as a secant (the last change of
-// the pull over the last change of o_rest), decaying by `stiffness_memory` with each new
-// measurement and held while o_rest does not measurably change.
+// Held tissue pulls the forceps through the grasp's attachments, which name the body as well
+// (physics/body_attachment.hpp): the pull moves the proxy within the same substeps, and at rest
+// k o balances the push and the pull together.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -43,9 +38,7 @@ struct ProxyParams {
   // the contact rows' static and kinetic friction alike.
   std::array<Real, kTissueCount> friction{Real(0.2), Real(0.2), Real(0.15),
                                           Real(0.1), Real(0.1), Real(0.3)};
-  Real relaxation = Real(0.5);        // the held pull's largest step toward its balance (-)
-  Real stiffness_memory = Real(0.9);  // the estimated k_t's decay per measurement (-)
-  Real max_offset = Real(0.015);      // largest proxy-device distance (unit: m)
+  Real max_offset = Real(0.015);  // largest proxy-device distance (unit: m)
 };
 
 struct ProxyState {
@@ -55,11 +48,7 @@ struct ProxyState {
   // tissue_force is the contacts' friction, which the haptic loop renders as eq. 18 instead.
   Vec3 normal_force = Vec3::Zero();  // (unit: N)
   Tissue pressed = Tissue::none;     // the tissue with the largest share of it
-  // The held tissue's pull (staggered, see above).
-  Vec3 pull = Vec3::Zero();         // on the jaws after the last step (unit: N)
-  Vec3 rest = Vec3::Zero();         // o_rest (unit: m)
-  Real pull_stiffness = 0;          // k_t estimated from the last steps (unit: N/m)
-  Vec3 last_change = Vec3::Zero();  // of o_rest at the last update (unit: m)
+  Vec3 pull = Vec3::Zero();          // the held tissue's, on the jaws after the last step (unit: N)
 };
 
 // The force on the tool from the contact rows tagged `tag` over the last step of length dt:
@@ -74,7 +63,8 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
 // the heart and the wall (`stops`, tagged with their Tissue): the contact rows name the body
 // (`body_index` in the state's proxies), and the body takes the coupling of the tissue most rows
 // of either kind touch (with none, of the tissue pressed in the last step; with none either, the
-// fascia's), the bound, the held pull's rest and the offset the proxy ended the last step with.
+// fascia's), the bound and the offset the proxy ended the last step with (its spring relaxed at
+// the device).
 // Each contact row takes its own tissue's friction (a particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
                         std::span<physics::ContactRow> rows,
@@ -82,18 +72,13 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
                         std::size_t object_count, physics::ProxyBody& body);
 
-// After a step of length dt: the offset the solve left, the tissue's force on the tool (what the
-// contacts put on the body over the step, normal and friction: at rest k (o - o_rest)) plus the
-// held tissue's `pull`, its normal part (`normal_push`, the contacts' normal impulses over dt
-// from tissue_force_on_tool, plus the pull), the tissue pressed (`pressed`, or the pull's when
-// the pull is the larger), and o_rest moved toward F_pull / k (`pull_tissue`'s k; see above). A
-// non-finite pull or push is none.
-void finish_proxy_step(const ProxyParams& params, const physics::ProxyBody& body, Real dt,
-                       const Vec3& normal_push, Tissue pressed, const Vec3& pull,
-                       Tissue pull_tissue, ProxyState& state);
-
-// The staggered relaxation of o_rest alone (finish_proxy_step's last part).
-void relax_held_pull(const ProxyParams& params, const Vec3& pull, Tissue pull_tissue,
-                     ProxyState& state);
+// After a step of length dt: the offset the solve left, the force on the tool (everything the
+// body received over the step: the contacts' push and friction, the held tissue's pull, the heart's
+// and the wall's push; at rest k o), its normal channel (`normal_push`, the contacts' normal
+// impulses over dt from tissue_force_on_tool, plus the held tissue's `pull`), and the tissue
+// pressed (`pressed`, or `pull_tissue` when the pull is the larger part). A non-finite pull or
+// push is none.
+void finish_proxy_step(const physics::ProxyBody& body, Real dt, const Vec3& normal_push,
+                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state);
 
 }  // namespace imasim::surgery

@@ -1,0 +1,42 @@
+#pragma once
+// A particle held by a proxy body (the forceps' grasp; issue 13): the attachment of
+// attachment_constraint.hpp, C = p - t, with the target t riding on the body, carried by the
+// offset the body moves by within the step. Particle and body share each correction by their
+// inverse masses (the body weighs c h over a substep h, proxy_body.hpp), so held tissue pulls the
+// tool back within the same substeps in which the tool pulls it, and its pull is part of the
+// impulse the body receives (c times each of its corrections), as a contact's push is. Projected
+// serially: the rows share their body.
+#include <cstdint>
+
+#include "math/types.hpp"
+#include "physics/proxy_body.hpp"
+
+namespace imasim::physics {
+
+struct BodyAttachmentRow {
+  std::uint32_t particle = 0;
+  std::uint32_t body = 0;      // the proxy body (State::proxies)
+  Vec3 target = Vec3::Zero();  // on the tool's gathered path, before the body's carry (unit: m)
+  Real compliance = 0;         // alpha (unit: m/N)
+  Vec3 lambda = Vec3::Zero();  // this substep's multipliers, one per axis (unit: N s^2)
+};
+
+// XPBD on the three linear rows at once, in a substep of length h: alpha~ = alpha / h^2,
+// d_lambda = (-C - alpha~ lambda) / (w_p + w_b + alpha~); the particle moves by w_p d_lambda, the
+// body by -w_b d_lambda (the target moves with it). A fixed particle is left alone.
+inline void project_body_attachment(BodyAttachmentRow& r, Vec3* p, const Real* w, ProxyBody& body,
+                                    Real h) {
+  const Real wp = w[r.particle];
+  if (wp == 0) return;
+  const Real wb = proxy_inverse_mass(body, h);
+  const Real alpha = r.compliance / (h * h);
+  const Vec3 c = p[r.particle] - (r.target + body.carried());
+  const Vec3 dl = (-c - alpha * r.lambda) / (wp + wb + alpha);
+  r.lambda += dl;
+  p[r.particle] += wp * dl;
+  const Vec3 moved = -wb * dl;
+  body.offset += moved;
+  body.impulse += body.damping * moved;
+}
+
+}  // namespace imasim::physics
