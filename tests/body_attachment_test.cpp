@@ -36,7 +36,8 @@ struct Rig {
   void run(int steps) {
     for (int n = 0; n < steps; ++n) {
       state.body_attachments.clear();
-      state.body_attachments.push_back({0, 0, body().offset, kCompliance, Vec3::Zero()});
+      state.body_attachments.push_back(
+          {0, 0, body().offset, kCompliance, Vec3::Zero(), Vec3::Zero()});
       ASSERT_TRUE(step(model, state, exec).ok());
     }
   }
@@ -60,6 +61,7 @@ TEST(BodyAttachment, AWeightHangingFromTheProxySinksItUntilTheSpringCarriesIt) {
   EXPECT_NEAR(rig.body().offset.y(), -sink, 1e-6 * sink);
   EXPECT_NEAR(rig.body().offset.x(), 0, 1e-15);
   EXPECT_NEAR(rig.body().impulse.y() / dt, -weight, 1e-6 * weight);
+  EXPECT_EQ(held_pull_on_body(rig.state.body_attachments, 0, dt), rig.body().impulse / dt);
   EXPECT_NEAR(rig.state.particles.velocity[0].y(), 0, 1e-9);
   // The particle hangs below the jaws by the attachment's stretch, alpha m g, but for the
   // splitting of a substep (the spring lifts the body by m g h / c after the hold).
@@ -70,10 +72,11 @@ TEST(BodyAttachment, AWeightHangingFromTheProxySinksItUntilTheSpringCarriesIt) {
 
 TEST(BodyAttachment, AHoldNamingAMissingParticleOrBodyIsReported) {
   Rig rig;
-  rig.state.body_attachments.push_back({5, 0, Vec3::Zero(), kCompliance, Vec3::Zero()});
+  rig.state.body_attachments.push_back(
+      {5, 0, Vec3::Zero(), kCompliance, Vec3::Zero(), Vec3::Zero()});
   prepare_state(rig.model, rig.state);
   EXPECT_NE(validate_state(rig.model, rig.state).find("missing particle"), std::string::npos);
-  rig.state.body_attachments[0] = {0, 2, Vec3::Zero(), kCompliance, Vec3::Zero()};
+  rig.state.body_attachments[0] = {0, 2, Vec3::Zero(), kCompliance, Vec3::Zero(), Vec3::Zero()};
   EXPECT_NE(validate_state(rig.model, rig.state).find("missing proxy body"), std::string::npos);
 }
 

@@ -24,7 +24,7 @@ constexpr bool kPortable = false;
 #endif
 
 constexpr std::uint64_t kClothHash = 0x87d390005a5391dfull;
-constexpr std::uint64_t kSessionHash = 0x6a066d124de36bccull;
+constexpr std::uint64_t kSessionHash = 0x5dd0390fabfde50aull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

@@ -76,7 +76,7 @@ Real press_force(const Press& press) {
     world.state.contacts.clear();
     surgery::gather_tool_contacts(world.state.particles, tool, before, now, contact, dt, kTag,
                                   world.state.contacts);
-    surgery::prepare_proxy_body(params, proxy, world.state.contacts.rows, {}, 0,
+    surgery::prepare_proxy_body(params, proxy, world.state.contacts.rows, 0,
                                 world.state.particles.object.data(), object_tissue.data(),
                                 object_tissue.size(), world.state.proxies[0]);
     EXPECT_TRUE(tissue::step_tissue(world, exec).ok());
@@ -85,7 +85,7 @@ Real press_force(const Press& press) {
         world.state.contacts, world.state.particles.object.data(), object_tissue.data(),
         object_tissue.size(), kTag, dt, pressed);
     surgery::finish_proxy_step(world.state.proxies[0], dt, normal, pressed, Vec3::Zero(),
-                               Tissue::none, proxy);
+                               Tissue::none, Tissue::none, proxy);
     force = press.proxy ? proxy.tissue_force : normal;
     previous = at + world.state.proxies[0].carried();
   }

@@ -78,7 +78,7 @@ struct PressRig {
     world.state.contacts.clear();
     gather_tool_contacts(world.state.particles, tool, before, now, ContactParams{}, dt, kTag,
                          world.state.contacts);
-    prepare_proxy_body(params, proxy, world.state.contacts.rows, {}, 0,
+    prepare_proxy_body(params, proxy, world.state.contacts.rows, 0,
                        world.state.particles.object.data(), object_tissue.data(),
                        object_tissue.size(), world.state.proxies[0]);
     ASSERT_TRUE(tissue::step_tissue(world, exec).ok());
@@ -87,7 +87,7 @@ struct PressRig {
         tissue_force_on_tool(world.state.contacts, world.state.particles.object.data(),
                              object_tissue.data(), object_tissue.size(), kTag, dt, pressed);
     finish_proxy_step(world.state.proxies[0], dt, normal_force, pressed, Vec3::Zero(), Tissue::none,
-                      proxy);
+                      Tissue::none, proxy);
     previous_probe = at + world.state.proxies[0].carried();  // where the solve left the tool
   }
 
@@ -172,7 +172,8 @@ TEST(ToolProxy, AfterAStepTheToolFeelsEverythingItsBodyReceived) {
   body.impulse = 0.005 * Vec3(0.02, 0.1, -0.3);
   ProxyState after;
   finish_proxy_step(body, 0.005, Vec3(0, 0.1, 0), Tissue::fascia, Vec3(0, 0, -0.3), Tissue::ima,
-                    after);
+                    Tissue::heart, after);
+  EXPECT_EQ(after.stopped_by, Tissue::heart);
   EXPECT_EQ(after.offset, body.offset);
   EXPECT_NEAR((after.tissue_force - Vec3(0.02, 0.1, -0.3)).norm(), 0, 1e-15);
   EXPECT_NEAR((after.normal_force - Vec3(0, 0.1, -0.3)).norm(), 0, 1e-15);
@@ -180,7 +181,7 @@ TEST(ToolProxy, AfterAStepTheToolFeelsEverythingItsBodyReceived) {
   EXPECT_EQ(after.pressed, Tissue::ima);
   // A non-finite push or pull is none.
   finish_proxy_step(body, 0.005, Vec3(NAN, 0, 0), Tissue::fascia, Vec3(0, INFINITY, 0), Tissue::ima,
-                    after);
+                    Tissue::none, after);
   EXPECT_EQ(after.normal_force, Vec3::Zero());
   EXPECT_EQ(after.pull, Vec3::Zero());
   EXPECT_EQ(after.pressed, Tissue::fascia);
@@ -232,7 +233,7 @@ TEST(ToolProxy, EachRowTakesItsTissuesFriction) {
     rows[i].kinetic_friction = Real(0.4);
   }
   physics::ProxyBody body;
-  prepare_proxy_body(params, ProxyState{}, rows, {}, 0, particle_object, object_tissue, 3, body);
+  prepare_proxy_body(params, ProxyState{}, rows, 0, particle_object, object_tissue, 3, body);
   EXPECT_EQ(rows[0].static_friction, Real(0.25));
   EXPECT_EQ(rows[0].kinetic_friction, Real(0.25));
   EXPECT_EQ(rows[1].static_friction, Real(0.05));

@@ -7,6 +7,7 @@
 // impulse the body receives (c times each of its corrections), as a contact's push is. Projected
 // serially: the rows share their body.
 #include <cstdint>
+#include <span>
 
 #include "math/types.hpp"
 #include "physics/proxy_body.hpp"
@@ -19,6 +20,8 @@ struct BodyAttachmentRow {
   Vec3 target = Vec3::Zero();  // on the tool's gathered path, before the body's carry (unit: m)
   Real compliance = 0;         // alpha (unit: m/N)
   Vec3 lambda = Vec3::Zero();  // this substep's multipliers, one per axis (unit: N s^2)
+  // The impulse the hold put on the body over the step (unit: N s; / dt gives the mean pull).
+  Vec3 impulse = Vec3::Zero();
 };
 
 // XPBD on the three linear rows at once, in a substep of length h: alpha~ = alpha / h^2,
@@ -37,6 +40,16 @@ inline void project_body_attachment(BodyAttachmentRow& r, Vec3* p, const Real* w
   const Vec3 moved = -wb * dl;
   body.offset += moved;
   body.impulse += body.damping * moved;
+  r.impulse += body.damping * moved;
+}
+
+// The mean pull of the holds of `body` on it over the last step of length dt (unit: N).
+inline Vec3 held_pull_on_body(std::span<const BodyAttachmentRow> rows, std::uint32_t body,
+                              Real dt) {
+  Vec3 impulse = Vec3::Zero();
+  for (const BodyAttachmentRow& r : rows)
+    if (r.body == body) impulse += r.impulse;
+  return dt > 0 ? Vec3(impulse / dt) : Vec3::Zero();
 }
 
 }  // namespace imasim::physics

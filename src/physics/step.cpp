@@ -379,6 +379,8 @@ StepResult step(const Model& model, State& state, Executor& exec) {
     c.normal_impulse = 0;
   for (BodyStopRow& r : state.body_stops)
     r.normal_impulse = 0;
+  for (BodyAttachmentRow& r : state.body_attachments)
+    r.impulse = Vec3::Zero();
   measure_start_depths(state);
   for (ProxyBody& b : state.proxies) {
     keep_proxy_finite(b);

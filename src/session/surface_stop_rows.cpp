@@ -79,8 +79,8 @@ void gather_surface_stop_rows(SurgicalSession& s, const Station& st, std::uint32
   }
 }
 
-void note_surface_stop_rows(Station& st, std::span<const physics::BodyStopRow> rows,
-                            const Vec3& carried, Real dt) {
+surgery::Tissue note_surface_stop_rows(Station& st, std::span<const physics::BodyStopRow> rows,
+                                       const Vec3& carried, Real dt) {
   const physics::BodyStopRow* most = nullptr;
   for (const physics::BodyStopRow& r : rows) {
     if (!(r.normal_impulse > 0)) continue;
@@ -89,11 +89,12 @@ void note_surface_stop_rows(Station& st, std::span<const physics::BodyStopRow> r
     st.blocked_by_wall = st.blocked_by_wall || !heart;
     if (most == nullptr || r.normal_impulse > most->normal_impulse) most = &r;
   }
-  if (most == nullptr) return;
+  if (most == nullptr) return Tissue::none;
   st.stop.tissue = static_cast<Tissue>(most->tag);
   st.stop.point = most->point1 + carried;
   st.stop.normal = most->normal;
   st.stop.velocity = dt > 0 ? Vec3((most->surface1 - most->surface0) / dt) : Vec3::Zero();
+  return st.stop.tissue;
 }
 
 }  // namespace imasim::session

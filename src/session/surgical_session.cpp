@@ -336,11 +336,8 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     // Its rows are two-body contacts with its proxy, so the tissue stops it inside the solve.
     std::span<physics::ContactRow> rows(w.state.contacts.rows.data() + first,
                                         w.state.contacts.rows.size() - first);
-    std::span<const physics::BodyStopRow> stops(w.state.body_stops.data() + stop_first[k],
-                                                stop_first[k + 1] - stop_first[k]);
-    surgery::prepare_proxy_body(s.params.proxy, st.proxy, rows, stops, k,
-                                w.state.particles.object.data(), s.object_tissue.data(),
-                                s.object_tissue.size(), w.state.proxies[k]);
+    surgery::prepare_proxy_body(s.params.proxy, st.proxy, rows, k, w.state.particles.object.data(),
+                                s.object_tissue.data(), s.object_tissue.size(), w.state.proxies[k]);
   }
   profile[physics::Stage::contacts] += clock.lap();
   physics::StepResult r = scene::finish_thorax_step(s.scene, exec);
@@ -362,7 +359,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     // The tool ended the step where the solve left its proxy: the local model's reference and
     // the next step's motion start there (the pose keeps the surfaces' stop until then).
     st.carried = w.state.proxies[k].carried();
-    note_surface_stop_rows(
+    const surgery::Tissue stopped_by = note_surface_stop_rows(
         st,
         std::span<const physics::BodyStopRow>(w.state.body_stops.data() + stop_first[k],
                                               stop_first[k + 1] - stop_first[k]),
@@ -370,17 +367,15 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     Vec3 pull = Vec3::Zero();
     surgery::Tissue pulled_by = surgery::Tissue::none;
     if (k == 0 && !s.grasper.held.empty()) {
-      // Held tissue pulls on the jaws (their attachments ride on the proxy, which it moved inside
-      // the solve): the attachments' stretch where the step left the jaws.
-      Pose jaws = surgery::world_pose(st.instrument, st.state);
-      jaws.translation += st.carried;
-      pull = surgery::grasp_force_on_jaws(w.state.particles, s.params.grasp, jaws, s.grasper);
+      // Held tissue pulls on the jaws: their attachments ride on the proxy and pulled it inside
+      // the solve.
+      pull = physics::held_pull_on_body(w.state.body_attachments, k, dt);
       pulled_by = tissue_of_particle(s, s.grasper.held.front().particle);
     }
     st.state.controller.translation += st.carried;
     surgery::translate_tool_geometry(st.geometry, st.carried);
     surgery::finish_proxy_step(w.state.proxies[k], dt, normal_push, pressed, pull, pulled_by,
-                               st.proxy);
+                               stopped_by, st.proxy);
     const surgery::ContactSummary missed =
         surgery::resolve_tool_contacts(w.state.particles, w.state.scratch.saved_position,
                                        st.geometry, s.params.contact, dt, s.contacts);

@@ -69,7 +69,8 @@ std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params
   auto& rows = world.state.body_attachments;
   rows.clear();
   for (const Grasper::Hold& h : g.held)
-    rows.push_back({h.particle, g.body, tool.apply(h.local), params.compliance, Vec3::Zero()});
+    rows.push_back(
+        {h.particle, g.body, tool.apply(h.local), params.compliance, Vec3::Zero(), Vec3::Zero()});
   return static_cast<std::uint32_t>(g.held.size());
 }
 

@@ -43,8 +43,7 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
 }
 
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
-                        std::span<physics::ContactRow> rows,
-                        std::span<const physics::BodyStopRow> stops, std::uint32_t body_index,
+                        std::span<physics::ContactRow> rows, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
                         std::size_t object_count, physics::ProxyBody& body) {
   std::array<Real, kTissueCount> count{};
@@ -55,10 +54,8 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
     if (touched == Tissue::none) continue;
     c.static_friction = c.kinetic_friction = params.friction[std::size_t(touched)];
   }
-  for (const physics::BodyStopRow& r : stops) {
-    if (r.tag < std::uint32_t(kTissueCount)) count[r.tag] += 1;
-  }
   Tissue tissue = largest(count);
+  if (tissue == Tissue::none) tissue = state.stopped_by;
   if (tissue == Tissue::none) tissue = state.pressed;
   if (tissue == Tissue::none) tissue = Tissue::fascia;
   body.stiffness = params.stiffness[std::size_t(tissue)];
@@ -69,7 +66,9 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
 }
 
 void finish_proxy_step(const physics::ProxyBody& body, Real dt, const Vec3& normal_push,
-                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state) {
+                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, Tissue stopped_by,
+                       ProxyState& state) {
+  state.stopped_by = stopped_by;
   state.offset = body.offset.allFinite() ? body.offset : Vec3::Zero();
   state.tissue_force = dt > 0 && body.impulse.allFinite() ? Vec3(body.impulse / dt) : Vec3::Zero();
   state.pull = pull.allFinite() ? pull : Vec3::Zero();

@@ -20,7 +20,6 @@
 #include <span>
 
 #include "math/types.hpp"
-#include "physics/body_stop.hpp"
 #include "physics/contact.hpp"
 #include "physics/particles.hpp"
 #include "physics/proxy_body.hpp"
@@ -48,6 +47,7 @@ struct ProxyState {
   // tissue_force is the contacts' friction, which the haptic loop renders as eq. 18 instead.
   Vec3 normal_force = Vec3::Zero();  // (unit: N)
   Tissue pressed = Tissue::none;     // the tissue with the largest share of it
+  Tissue stopped_by = Tissue::none;  // the heart or the wall, if their rows pushed the proxy
   Vec3 pull = Vec3::Zero();          // the held tissue's, on the jaws after the last step (unit: N)
 };
 
@@ -59,16 +59,14 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
                           const physics::ObjectId* particle_object, const Tissue* object_tissue,
                           std::size_t object_count, std::uint32_t tag, Real dt, Tissue& pressed);
 
-// Before a step, with the instrument's contact rows gathered (`rows`) and the rows that stop it at
-// the heart and the wall (`stops`, tagged with their Tissue): the contact rows name the body
-// (`body_index` in the state's proxies), and the body takes the coupling of the tissue most rows
-// of either kind touch (with none, of the tissue pressed in the last step; with none either, the
-// fascia's), the bound and the offset the proxy ended the last step with (its spring relaxed at
-// the device).
-// Each contact row takes its own tissue's friction (a particle of no tissue keeps the row's).
+// Before a step, with the instrument's contact rows gathered (`rows`): they name the body
+// (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
+// them touch (with none, of the surface that stopped it in the last step, else of the tissue
+// pressed in it; with none either, the fascia's), the bound and the offset the proxy ended the
+// last step with (its spring relaxed at the device). Each row takes its own tissue's friction (a
+// particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
-                        std::span<physics::ContactRow> rows,
-                        std::span<const physics::BodyStopRow> stops, std::uint32_t body_index,
+                        std::span<physics::ContactRow> rows, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
                         std::size_t object_count, physics::ProxyBody& body);
 
@@ -76,9 +74,10 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
 // body received over the step: the contacts' push and friction, the held tissue's pull, the heart's
 // and the wall's push; at rest k o), its normal channel (`normal_push`, the contacts' normal
 // impulses over dt from tissue_force_on_tool, plus the held tissue's `pull`), and the tissue
-// pressed (`pressed`, or `pull_tissue` when the pull is the larger part). A non-finite pull or
-// push is none.
+// pressed (`pressed`, or `pull_tissue` when the pull is the larger part), and the surface that
+// stopped it (`stopped_by`). A non-finite pull or push is none.
 void finish_proxy_step(const physics::ProxyBody& body, Real dt, const Vec3& normal_push,
-                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, ProxyState& state);
+                       Tissue pressed, const Vec3& pull, Tissue pull_tissue, Tissue stopped_by,
+                       ProxyState& state);
 
 }  // namespace imasim::surgery
