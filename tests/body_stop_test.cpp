@@ -127,6 +127,8 @@ TEST(BodyStop, FrictionHoldsTheProxyBelowCoulombsBoundAndSlidesItAtTheBound) {
   // motion.
   rig.run(60, Vec3(0.0001, 0, 0));
   EXPECT_NEAR(rig.force().x(), -kFriction * rig.force().y(), 1e-9 * rig.force().y());
+  EXPECT_NEAR(rig.row().friction_impulse.x(), -kFriction * rig.row().normal_impulse,
+              1e-9 * rig.row().normal_impulse);
   EXPECT_GT(rig.point().x(), x + 0.004);
   EXPECT_NEAR(rig.point().y(), kMargin, 1e-12);
 }

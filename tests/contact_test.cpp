@@ -188,17 +188,42 @@ TEST(Contact, StaticFrictionHoldsAcrossASecondProjectionInTheSubstep) {
   EXPECT_NEAR(c.substep_normal, 1.001e-3, 1e-15);
 }
 
-// Kinetic friction removes no more in all than mu_k times the substep's normal correction: the
-// first projection is static (it holds 0.4 mm of slip, within mu_s 1 mm), and a sweep then drags
-// the particle 1 mm along the plane, 1 nm into it. The 0.4 mm held already spends more than
-// mu_k 1.000001 mm = 0.3 mm, so the drag stays whole; per projection, friction would have taken
-// another mu_k 1 nm from it.
-TEST(Contact, KineticFrictionSpendsTheSubstepsBoundOnce) {
+// Sliding, the friction over the substep is mu_k times its push, not more and not more than once:
+// the first projection is static (it holds 0.4 mm of slip, within mu_s 1 mm), and a sweep then
+// drags the particle 1 mm along the plane, 1 nm into it. The friction wanted, 1.4 mm, is beyond
+// mu_s; it is put on mu_k's rim, 0.3000003 mm, so the particle gets back the 0.0999997 mm it was
+// held beyond that and slides 1.0999997 mm. Per projection, friction would have taken another
+// mu_k 1 nm from the drag and kept the 0.4 mm.
+TEST(Contact, KineticFrictionOverTheSubstepIsMuKTimesItsPush) {
   ContactRow c = row_on_plane(0.5, 0.3);
   const auto [first, second] = project_twice(c, Vec3(4e-4, -1e-3, 0), Vec3(1e-3, -1e-9, 0));
   EXPECT_NEAR(first.x(), 0, 1e-15);
-  EXPECT_NEAR(second.x(), 1e-3, 1e-15);
-  EXPECT_NEAR(c.substep_friction, 4e-4, 1e-15);
+  EXPECT_NEAR(second.x(), 1e-3 + (4e-4 - 0.3 * 1.000001e-3), 1e-15);
+  EXPECT_NEAR(c.substep_friction.x(), 0.3 * c.substep_normal, 1e-15);
+}
+
+// Static friction holds no more in all than mu_s times the substep's normal correction: the first
+// projection pushes the particle 1 mm out and holds its 0.4 mm slip (within mu_s 1 mm = 0.5 mm);
+// a sweep then moves it another 0.4 mm along the plane and 1 nm into it. Holding that too would
+// take 0.8 mm of friction against 1.000001 mm of push, 1.6 mu_s; the row gives way instead and
+// friction takes only what is left of the bound, 0.1000005 mm.
+TEST(Contact, StaticFrictionHoldsNoMoreThanTheSubstepsBound) {
+  ContactRow c = row_on_plane(0.5, 0.5);
+  const auto [first, second] = project_twice(c, Vec3(4e-4, -1e-3, 0), Vec3(4e-4, -1e-9, 0));
+  EXPECT_NEAR(first.x(), 0, 1e-15);
+  EXPECT_NEAR(c.substep_friction.norm(), 0.5 * c.substep_normal, 1e-15);
+  EXPECT_NEAR(second.x(), 4e-4 - (0.5 * 1.000001e-3 - 4e-4), 1e-15);
+}
+
+// Friction is a vector over the substep: a sweep that moves the particle back 0.3 mm against the
+// 0.4 mm slip held so far leaves 0.1 mm of friction in all, well inside the bound, so the row
+// holds it where the surface is. Adding the sizes (0.7 mm against 0.5 mm) would have let it slide.
+TEST(Contact, FrictionGivenBackWithinTheSubstepStaysStatic) {
+  ContactRow c = row_on_plane(0.5, 0.5);
+  const auto [first, second] = project_twice(c, Vec3(4e-4, -1e-3, 0), Vec3(-3e-4, -1e-9, 0));
+  EXPECT_NEAR(first.x(), 0, 1e-15);
+  EXPECT_NEAR(second.x(), 0, 1e-15);
+  EXPECT_NEAR(c.substep_friction.x(), 1e-4, 1e-15);
 }
 
 // The same bound against a proxy body's surface (the two-body overload): the second projection

@@ -233,6 +233,15 @@ TEST(SurgicalSession, TheHeartPushesTheProxyBackWithTheCouplingsSpring) {
   // touches), pushing out along its normal.
   const Vec3 heart = hook.proxy.tissue_force - hook.proxy.normal_force;
   EXPECT_GT(heart.dot(hook.stop.normal), 0.9 * spring.norm());
+  // Each of the heart's rows rubs within Coulomb's cone over the step, mu its normal impulse.
+  const Real mu = s.params.proxy.friction[static_cast<std::size_t>(surgery::Tissue::heart)];
+  int touching = 0;
+  for (const physics::BodyStopRow& r : s.scene.patch.world.state.body_stops) {
+    if (r.body != 1 || r.tag != static_cast<std::uint32_t>(surgery::Tissue::heart)) continue;
+    touching += r.normal_impulse > 0 ? 1 : 0;
+    EXPECT_LE(r.friction_impulse.norm(), mu * r.normal_impulse * (1 + 1e-9));
+  }
+  EXPECT_GT(touching, 0);
 }
 
 TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {

@@ -7,7 +7,7 @@
 // the impulse c delta on the tool (proxy_body.hpp: it weighs c h over a substep h), so the
 // surface's push enters the tool's force like the tissue's, and at rest it balances the
 // coupling's spring: k (o - o_rest) = F_surface. Coulomb friction in positional form, with the
-// same bound over the substep as a particle's contact (friction_share), against the surface's
+// same bound over the substep as a particle's contact (friction_correction), against the surface's
 // own motion.
 #include <cstdint>
 #include <vector>
@@ -32,8 +32,10 @@ struct BodyStopRow {
   // impulse on the tool over the step (unit: N s; / dt gives the mean force).
   Real depth = 0;
   Real normal_impulse = 0;
+  Vec3 friction_impulse = Vec3::Zero();  // the friction's on the tool over the step (unit: N s)
   // Within the substep: the normal correction so far and the tangential one friction made.
-  Real substep_normal = 0, substep_friction = 0;  // (unit: m)
+  Real substep_normal = 0;               // (unit: m)
+  Vec3 substep_friction = Vec3::Zero();  // (unit: m)
 };
 
 // The point's gap to the plane at the substep's end (tau1, a fraction of the step), as the body
@@ -61,9 +63,10 @@ inline void project_body_stop(BodyStopRow& r, ProxyBody& body, const Vec3& body_
   const Vec3 slip =
       span * (r.point1 - r.point0) + (body.offset - body_start) - span * (r.surface1 - r.surface0);
   const Vec3 slip_t = slip - slip.dot(r.normal) * r.normal;
-  const Vec3 removed = friction_share(r, dn, slip_t.norm()) * slip_t;
+  const Vec3 removed = friction_correction(r, dn, slip_t);
   body.offset -= removed;
   body.impulse -= body.damping * removed;
+  r.friction_impulse -= body.damping * removed;
 }
 
 }  // namespace imasim::physics

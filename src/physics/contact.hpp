@@ -7,11 +7,12 @@
 // every substep, after the constraint sweeps of each iteration, the particle is kept on the
 // plane's outer side plus a margin (a hard XPBD inequality against an infinitely heavy surface),
 // with Coulomb friction in positional form (Mueller et al. 2020) against the surface's motion
-// in that substep: the slip is removed while it is below mu_s times the normal correction, else
-// reduced by mu_k times it. A contact of a coarse object (ObjectParams::coarse) is projected in
-// that object's substeps only. A row that names a proxy body (physics/proxy_body.hpp) is a
-// two-body contact: the plane moves with the body's offset as well, and each correction, normal
-// and tangential, is shared between particle and body by their inverse masses.
+// in that substep: the friction is what removes the slip while it stays within mu_s times the
+// normal correction, else mu_k times it, both summed over the substep (friction_correction). A
+// contact of a coarse object (ObjectParams::coarse) is projected in that object's substeps only. A
+// row that names a proxy body (physics/proxy_body.hpp) is a two-body contact: the plane moves with
+// the body's offset as well, and each correction, normal and tangential, is shared between particle
+// and body by their inverse masses.
 #include <cstdint>
 #include <vector>
 
@@ -35,8 +36,9 @@ struct ContactRow {
   // SolverParams::push_out_speed (unit: m).
   Real start_depth = 0;
   // Within the substep: the normal correction so far and the tangential one friction made.
-  Real substep_normal = 0, substep_friction = 0;  // (unit: m)
-  Real normal_impulse = 0;                        // (unit: N s)
+  Real substep_normal = 0;               // (unit: m)
+  Vec3 substep_friction = Vec3::Zero();  // (unit: m)
+  Real normal_impulse = 0;               // (unit: N s)
 };
 
 struct ContactSet {
@@ -48,25 +50,33 @@ struct ContactSet {
   std::size_t touching(std::uint32_t first_tag, std::uint32_t end_tag) const;
 };
 
-// Coulomb's bound on one projection's friction, as a share of the tangential slip s (unit: m)
-// to remove. The bound is over the whole substep: a row projected more than once in it (extra
-// stretch sweeps, iterations) compares the slip since the substep began with mu times the normal
-// correction accumulated so far, and kinetic friction removes no more in all than mu_k times it.
-// Against one projection's dn alone, every projection after the first would see a small residual
-// dn against the whole slip and let go. With one projection per substep this is the plain bound.
-// The fields it uses are a ContactRow's and a BodyStopRow's alike.
+// Coulomb's bound on friction over a whole substep, in which a row may be projected more than
+// once (extra stretch sweeps, iterations): the row keeps the friction correction it has made so
+// far in the substep (a vector, substep_friction) and the normal one (substep_normal). Each
+// projection wants that friction plus the slip still left (slip_t: the tangential slip relative
+// to the surface since the substep began); inside the static disc, mu_s times the normal
+// correction, it gets it and the particle moves with the surface; outside, the friction is put on
+// the kinetic disc's rim, mu_k times it, in the direction wanted (accumulated clamping, as
+// impulse solvers clamp the friction they have accumulated). So over the substep friction never
+// exceeds mu times the push, however many projections; against each projection's own dn, every
+// projection after the first would let go, and against the accumulated dn without what friction
+// has taken already, k projections could hold up to k mu. With one projection per substep this is
+// the plain bound. Returns the correction to take off the particle's slip (unit: m). The fields
+// it uses are a ContactRow's and a BodyStopRow's alike.
 template <class Row>
-inline Real friction_share(Row& c, Real dn, Real s) {
+inline Vec3 friction_correction(Row& c, Real dn, const Vec3& slip_t) {
   c.substep_normal += dn;
-  if (s < c.static_friction * c.substep_normal) {  // static: it moves with the surface
-    c.substep_friction += s;
-    return 1;
+  const Vec3 wanted = c.substep_friction + slip_t;
+  const Real size = wanted.norm();
+  if (size <= c.static_friction * c.substep_normal) {  // static: it moves with the surface
+    c.substep_friction = wanted;
+    return slip_t;
   }
-  if (!(s > 0)) return 0;
-  Real share = (c.kinetic_friction * c.substep_normal - c.substep_friction) / s;
-  share = share < 0 ? Real(0) : (share < 1 ? share : Real(1));
-  c.substep_friction += share * s;
-  return share;
+  const Real rim = c.kinetic_friction * c.substep_normal;
+  const Vec3 next = size > rim ? Vec3((rim / size) * wanted) : wanted;
+  const Vec3 removed = next - c.substep_friction;
+  c.substep_friction = next;
+  return removed;
 }
 
 // How far inside its surface a row may leave its particle at the end of a substep (unit: m): what
@@ -95,8 +105,7 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
   // Slip relative to the surface over this substep, tangential part.
   const Vec3 slip = (x - x_start[c.particle]) - (tau1 - tau0) * motion;
   const Vec3 slip_t = slip - slip.dot(c.normal) * c.normal;
-  const Real s = slip_t.norm();
-  x -= friction_share(c, dn, s) * slip_t;
+  x -= friction_correction(c, dn, slip_t);
 }
 
 // The same against a proxy body's surface: the plane is carried by the body's offset since the
@@ -128,8 +137,7 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
   const Vec3 surface = (tau1 - tau0) * motion + (body.offset - body_start);
   const Vec3 slip = (x - x_start[c.particle]) - surface;
   const Vec3 slip_t = slip - slip.dot(c.normal) * c.normal;
-  const Real s = slip_t.norm();
-  const Vec3 removed = friction_share(c, dn, s) * slip_t;
+  const Vec3 removed = friction_correction(c, dn, slip_t);
   x -= share * removed;
   body.offset += (1 - share) * removed;
   body.impulse += body.damping * (1 - share) * removed;

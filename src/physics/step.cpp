@@ -287,7 +287,8 @@ void remove_separating_velocities(State& state, std::uint32_t band, Real inverse
 void reset_contact_depths(State& state, std::uint32_t band) {
   for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
     c.depth = 0;
-    c.substep_normal = c.substep_friction = 0;
+    c.substep_normal = 0;
+    c.substep_friction = Vec3::Zero();
   }
   for (BodyAttachmentRow& r :
        band_rows(state.body_attachments, state.scratch.body_attachment_split, band))
@@ -295,7 +296,8 @@ void reset_contact_depths(State& state, std::uint32_t band) {
   if (band != 0) return;
   for (BodyStopRow& r : state.body_stops) {  // the bodies move in the fine substeps
     r.depth = 0;
-    r.substep_normal = r.substep_friction = 0;
+    r.substep_normal = 0;
+    r.substep_friction = Vec3::Zero();
   }
 }
 
@@ -377,8 +379,10 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   order_rows_by_band(model, state);
   for (ContactRow& c : state.contacts.rows)
     c.normal_impulse = 0;
-  for (BodyStopRow& r : state.body_stops)
+  for (BodyStopRow& r : state.body_stops) {
     r.normal_impulse = 0;
+    r.friction_impulse = Vec3::Zero();
+  }
   for (BodyAttachmentRow& r : state.body_attachments)
     r.impulse = Vec3::Zero();
   measure_start_depths(state);

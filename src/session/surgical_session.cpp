@@ -148,8 +148,8 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
   s.scene = scene::make_thorax_scene(scene_params);
   tissue::TissueWorld& w = s.scene.patch.world;
   const tissue::ThoracicPatch& patch = s.scene.patch;
-  s.grasper = surgery::make_grasper(w, params.grasp);
-  s.grasper.body = 0;  // the forceps' proxy: held tissue pulls it inside the solve
+  // The forceps' proxy is body 0: held tissue pulls it inside the solve.
+  s.grasper = surgery::make_grasper(w, params.grasp, 0);
 
   s.object_tissue.assign(w.model.objects.size(), Tissue::none);
   s.object_tissue[w.meshes[patch.wall].object] = Tissue::chest_wall;

@@ -4,9 +4,11 @@
 
 namespace imasim::surgery {
 
-Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params) {
+Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params, std::uint32_t body) {
   Grasper g;
-  g.material = world.model.add_material(physics::ConstraintMaterial::xpbd(params.compliance));
+  g.body = body;
+  if (body == physics::kNoBody)  // with a body the holds carry their compliance themselves
+    g.material = world.model.add_material(physics::ConstraintMaterial::xpbd(params.compliance));
   return g;
 }
 

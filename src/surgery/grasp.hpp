@@ -43,8 +43,10 @@ struct Grasper {
   std::vector<Hold> held;
 };
 
-// Registers the attachments' material in the world's model (set-up).
-Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params);
+// A grasper whose jaws belong to proxy body `body` (or kNoBody); without a body it registers its
+// attachments' material in the world's model (set-up).
+Grasper make_grasper(tissue::TissueWorld& world, const GraspParams& params,
+                     std::uint32_t body = physics::kNoBody);
 
 // Once per step, after the instrument's pose and jaws are updated: grasps on closing, releases
 // on opening, moves the held particles' targets with the jaws (with a body, rewrites the state's
