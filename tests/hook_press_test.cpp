@@ -11,12 +11,9 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <fstream>
-#include <sstream>
 #include <string>
-#include <vector>
 
-#include "cli_process.hpp"
+#include "recorded_force.hpp"
 
 namespace {
 
@@ -32,52 +29,22 @@ struct Press {
   std::size_t samples = 0;
 };
 
-// The hook's normal force from t = 0.4 s on, from the run's 60 Hz record (last: the last row's).
-Press press_from(const std::string& csv) {
-  std::istringstream text(imasim::test::read_file(csv));
-  std::string line;
-  std::getline(text, line);
-  std::vector<std::string> header;
-  {
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');)
-      header.push_back(cell);
-  }
-  const auto column = [&](const std::string& name) {
-    return std::size_t(std::find(header.begin(), header.end(), name) - header.begin());
-  };
-  const std::size_t t_col = column("t_s"), f_col = column("hook_force_normal_n");
-  EXPECT_LT(f_col, header.size()) << csv;
+// The hook's normal force from t = 0.4 s on (last: the last row's), from a run's 60 Hz record
+// with the given [solver] table ("" for the defaults).
+Press run_press(const std::string& name, const std::string& solver, const std::string& script,
+                const std::string& seconds) {
+  const imasim::test::RecordedColumn f = imasim::test::run_recorded(
+      kDir, "imasim_hook_press_" + name, solver, script, seconds, "hook_force_normal_n");
   Press p;
-  while (std::getline(text, line)) {
-    std::vector<std::string> cells;
-    std::istringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');)
-      cells.push_back(cell);
-    if (cells.size() != header.size() || std::stod(cells[t_col]) < 0.4) continue;
-    const double f = std::stod(cells[f_col]);
-    p.mean += f;
-    p.peak = std::max(p.peak, f);
-    p.last = f;
+  for (std::size_t k = 0; k < f.t.size(); ++k) {
+    if (f.t[k] < 0.4) continue;
+    p.mean += f.value[k];
+    p.peak = std::max(p.peak, f.value[k]);
+    p.last = f.value[k];
     ++p.samples;
   }
   if (p.samples > 0) p.mean /= double(p.samples);
   return p;
-}
-
-// `imasim run` on a script for some seconds with the given [solver] table ("" for the defaults).
-Press run_press(const std::string& name, const std::string& solver, const std::string& script,
-                const std::string& seconds) {
-  const std::string scene = kDir + "imasim_hook_press_" + name + ".toml";
-  std::ofstream(scene) << solver;
-  const std::string csv = kDir + "imasim_hook_press_" + name + ".csv";
-  const std::string err = imasim::test::test_err_file(kDir, "imasim_hook_press_" + name);
-  const imasim::test::Finished f =
-      imasim::test::run_imasim("run --headless --scene " + scene + " --script " + script +
-                                   " --seconds " + seconds + " --threads 1 --no-db --record " + csv,
-                               err);
-  EXPECT_EQ(f.exit_code, 0) << f.err;
-  return press_from(csv);
 }
 
 // The runs of one figure: two finer solves, the default, one sweep.
@@ -98,13 +65,15 @@ Runs run_all(const std::string& name, const std::string& script, const std::stri
   return r;
 }
 
-// Held: measured 0.1093 N mean and 0.3874 N peak by default against 0.1115 and 0.3895 N at
-// 128 x 4 and 0.1104 and 0.3876 N at 256 x 4; one sweep 0.1009 and 0.3410 N.
+// Held: measured 0.0366 N mean and 0.1296 N peak by default against 0.0373 and 0.1299 N at
+// 128 x 4 and 0.0370 and 0.1291 N at 256 x 4; one sweep 0.0339 and 0.1145 N. (Three times these
+// until the eighteenth session: the hook's coupling is the fat's, 100 N/m, which most of its rows
+// touch, and the local model rendered its offset at the fascia's 300 N/m.)
 TEST(HookPress, HeldTheDefaultIsWithinFivePercentOfFinerSolvesAndOneSweepIsNot) {
   const Runs r = run_all("held", kHeld, "2", 97);  // 0.4-2 s at 60 Hz
   // Pressed: the beat drives the fascia into the hook.
-  ASSERT_GT(r.fine.peak, 0.2);
-  ASSERT_GT(r.fine.mean, 0.05);
+  ASSERT_GT(r.fine.peak, 0.08);
+  ASSERT_GT(r.fine.mean, 0.02);
   for (const Press* finer : {&r.fine, &r.finest}) {
     EXPECT_NEAR(r.standard.mean, finer->mean, 0.05 * finer->mean);
     EXPECT_NEAR(r.standard.peak, finer->peak, 0.05 * finer->peak);
@@ -112,11 +81,11 @@ TEST(HookPress, HeldTheDefaultIsWithinFivePercentOfFinerSolvesAndOneSweepIsNot) 
   EXPECT_LT(r.one_sweep.peak, 0.9 * r.fine.peak);
 }
 
-// Sliding at 0.5 s: measured 0.357 N by default against 0.363 N at 128 x 4 and 0.360 N at
-// 256 x 4; one sweep 0.315 N.
+// Sliding at 0.5 s: measured 0.1193 N by default against 0.1205 N at 128 x 4 and 0.1202 N at
+// 256 x 4; one sweep 0.1042 N.
 TEST(HookPress, SlidingTheDefaultIsWithinFivePercentOfFinerSolvesAndOneSweepIsNot) {
   const Runs r = run_all("sliding", kSliding, "0.5", 7);  // 0.4-0.5 s at 60 Hz
-  ASSERT_GT(r.fine.last, 0.2);
+  ASSERT_GT(r.fine.last, 0.08);
   for (const Press* finer : {&r.fine, &r.finest})
     EXPECT_NEAR(r.standard.last, finer->last, 0.05 * finer->last);
   EXPECT_LT(r.one_sweep.last, 0.9 * r.fine.last);

@@ -24,7 +24,7 @@ constexpr bool kPortable = false;
 #endif
 
 constexpr std::uint64_t kClothHash = 0x87d390005a5391dfull;
-constexpr std::uint64_t kSessionHash = 0xff85e647e268d8a4ull;
+constexpr std::uint64_t kSessionHash = 0xc46d49e2adf9ef36ull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

@@ -229,10 +229,13 @@ TEST(SurgicalSession, TheHeartPushesTheProxyBackWithTheCouplingsSpring) {
   const Vec3 spring = body.stiffness * hook.proxy.offset;
   EXPECT_LT((hook.proxy.tissue_force - spring).norm(),
             body.stiffness * h / body.damping * spring.norm());
-  // The heart carries it (the whole force but the electrode's normal push on the fascia it also
-  // touches), pushing out along its normal.
-  const Vec3 heart = hook.proxy.tissue_force - hook.proxy.normal_force;
-  EXPECT_GT(heart.dot(hook.stop.normal), 0.9 * spring.norm());
+  // The heart carries it, pushing out along its normal (the stop's force, all its rows); the rest
+  // is the fascia's the electrode also touches: its normal push and friction within its cone.
+  EXPECT_GT(hook.stop.force.dot(hook.stop.normal), 0.9 * spring.norm());
+  const Vec3 fascia = hook.proxy.tissue_force - hook.stop.force;
+  EXPECT_LE((fascia - hook.proxy.normal_force).norm(),
+            s.params.proxy.friction[static_cast<std::size_t>(surgery::Tissue::fascia)] *
+                hook.proxy.normal_force.norm());
   // Each of the heart's rows rubs within Coulomb's cone over the step, mu its normal impulse.
   const Real mu = s.params.proxy.friction[static_cast<std::size_t>(surgery::Tissue::heart)];
   int touching = 0;

@@ -179,12 +179,42 @@ TEST(ToolProxy, AfterAStepTheToolFeelsEverythingItsBodyReceived) {
   EXPECT_NEAR((after.normal_force - Vec3(0, 0.1, -0.3)).norm(), 0, 1e-15);
   EXPECT_EQ(after.pull, Vec3(0, 0, -0.3));
   EXPECT_EQ(after.pressed, Tissue::ima);
+  EXPECT_EQ(after.held, Tissue::ima);
+  // Held against the heart, which pushes harder than the tissue pulls: the normal channel is
+  // still the held tissue's (the heart is rendered as its own contact), and the coupling's k is
+  // kept for the local model.
+  body.stiffness = 200;
+  body.impulse = 0.005 * Vec3(0, 0.5, -0.3);
+  finish_proxy_step(body, 0.005, Vec3::Zero(), Tissue::none, Vec3(0, 0, -0.3), Tissue::ima,
+                    Tissue::heart, after);
+  EXPECT_EQ(after.pressed, Tissue::ima);
+  EXPECT_EQ(after.held, Tissue::ima);
+  EXPECT_EQ(after.coupling, 200);
   // A non-finite push or pull is none.
   finish_proxy_step(body, 0.005, Vec3(NAN, 0, 0), Tissue::fascia, Vec3(0, INFINITY, 0), Tissue::ima,
                     Tissue::none, after);
   EXPECT_EQ(after.normal_force, Vec3::Zero());
   EXPECT_EQ(after.pull, Vec3::Zero());
   EXPECT_EQ(after.pressed, Tissue::fascia);
+  EXPECT_EQ(after.held, Tissue::none);
+}
+
+// With no contact rows the coupling is that of the tissue the jaws hold, not the heart's that
+// stopped them in the last step: a yes or no the solve answers differently at each resolution
+// would switch the spring between the two.
+TEST(ToolProxy, WithoutContactsTheCouplingIsTheHeldTissues) {
+  const ProxyParams params;
+  ProxyState state;
+  state.held = Tissue::fat;
+  state.stopped_by = Tissue::heart;
+  state.pressed = Tissue::fat;
+  physics::ProxyBody body;
+  prepare_proxy_body(params, state, {}, 0, nullptr, nullptr, 0, body);
+  EXPECT_EQ(body.stiffness, params.stiffness[std::size_t(Tissue::fat)]);
+  EXPECT_EQ(body.damping, params.damping[std::size_t(Tissue::fat)]);
+  state.held = Tissue::none;  // let go: the heart's
+  prepare_proxy_body(params, state, {}, 0, nullptr, nullptr, 0, body);
+  EXPECT_EQ(body.stiffness, params.stiffness[std::size_t(Tissue::heart)]);
 }
 
 TEST(ToolProxy, ForceOnTheToolIsTheOppositeOfTheContactsImpulsesPerStep) {

@@ -440,6 +440,15 @@ StepResult step(const Model& model, State& state, Executor& exec) {
           profile[Stage::solve] += clock.lap();
           project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h, pushed);
           profile[Stage::contacts] += clock.lap();
+          // Further sweeps of the coarse band, lambdas accumulating, its bending once: its
+          // substep is coarse_stride times the fine one, and so is its softness squared.
+          for (std::uint32_t sweep = 1; sweep < solver.coarse_sweeps; ++sweep) {
+            project_band(cs, 1, coarse, nullptr, exec);
+            project_follows(state, 1);
+            profile[Stage::solve] += clock.lap();
+            project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h, pushed);
+            profile[Stage::contacts] += clock.lap();
+          }
         }
         project_proxy_couplings(state, plan.fine_h, fine_tau0, tau1);
         // Further sweeps of the fine band's stiff rows, their lambdas accumulating: stretch,

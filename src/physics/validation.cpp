@@ -56,6 +56,7 @@ std::string validate_model(const Model& model) {
   if (s.coarse_stride < 1) return "solver.coarse_stride must be at least 1";
   if (s.bending_stride < 1) return "solver.bending_stride must be at least 1";
   if (s.stretch_sweeps < 1) return "solver.stretch_sweeps must be at least 1";
+  if (s.coarse_sweeps < 1) return "solver.coarse_sweeps must be at least 1";
   if (!(std::isfinite(s.max_speed) && s.max_speed > 0)) return "solver.max_speed must be > 0";
   if (!(std::isfinite(s.push_out_speed) && s.push_out_speed > 0))
     return "solver.push_out_speed must be > 0";

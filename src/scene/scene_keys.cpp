@@ -141,6 +141,8 @@ const SceneKey kKeys[] = {
      1000, "the fascia's bending rows are projected every this many substeps (gcd with substeps)"},
     {"solver.stretch_sweeps", CountRef([](P& p) { return &p.patch.solver.stretch_sweeps; }), 1, 4,
      "sweeps of the fine stretch rows and contacts per iteration (docs/physics.md)"},
+    {"solver.coarse_sweeps", CountRef([](P& p) { return &p.patch.solver.coarse_sweeps; }), 1, 4,
+     "sweeps of the coarse objects' rows (strands, IMA) per coarse substep (docs/physics.md)"},
     {"solver.max_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.max_speed; }), 1e-6, 1e6,
      "divergence guard: a faster particle fails the step"},
     {"solver.push_out_speed_m_per_s", RealRef([](P& p) { return &p.patch.solver.push_out_speed; }),

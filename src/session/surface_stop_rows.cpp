@@ -90,10 +90,16 @@ surgery::Tissue note_surface_stop_rows(Station& st, std::span<const physics::Bod
     if (most == nullptr || r.normal_impulse > most->normal_impulse) most = &r;
   }
   if (most == nullptr) return Tissue::none;
+  Vec3 impulse = Vec3::Zero();  // the stopping surface's, on the tool (unit: N s)
+  for (const physics::BodyStopRow& r : rows) {
+    if (r.tag == most->tag && r.normal_impulse > 0)
+      impulse += r.normal_impulse * r.normal + r.friction_impulse;
+  }
   st.stop.tissue = static_cast<Tissue>(most->tag);
   st.stop.point = most->point1 + carried;
   st.stop.normal = most->normal;
   st.stop.velocity = dt > 0 ? Vec3((most->surface1 - most->surface0) / dt) : Vec3::Zero();
+  st.stop.force = dt > 0 && impulse.allFinite() ? Vec3(impulse / dt) : Vec3::Zero();
   return st.stop.tissue;
 }
 

@@ -56,6 +56,9 @@ struct SurfaceStop {
   Vec3 point = Vec3::Zero();                       // (unit: m)
   Vec3 normal = Vec3::UnitZ();
   Vec3 velocity = Vec3::Zero();  // of the surface there: the heart's wall moves (unit: m/s)
+  // The surface's push and friction on the tool over the last step, all its rows together; zero
+  // when only the guard before the step stopped it (unit: N).
+  Vec3 force = Vec3::Zero();
 };
 
 // One instrument at its port.

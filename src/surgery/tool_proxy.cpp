@@ -55,6 +55,7 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
     c.static_friction = c.kinetic_friction = params.friction[std::size_t(touched)];
   }
   Tissue tissue = largest(count);
+  if (tissue == Tissue::none) tissue = state.held;
   if (tissue == Tissue::none) tissue = state.stopped_by;
   if (tissue == Tissue::none) tissue = state.pressed;
   if (tissue == Tissue::none) tissue = Tissue::fascia;
@@ -69,12 +70,16 @@ void finish_proxy_step(const physics::ProxyBody& body, Real dt, const Vec3& norm
                        Tissue pressed, const Vec3& pull, Tissue pull_tissue, Tissue stopped_by,
                        ProxyState& state) {
   state.stopped_by = stopped_by;
+  state.coupling = body.stiffness;
   state.offset = body.offset.allFinite() ? body.offset : Vec3::Zero();
   state.tissue_force = dt > 0 && body.impulse.allFinite() ? Vec3(body.impulse / dt) : Vec3::Zero();
   state.pull = pull.allFinite() ? pull : Vec3::Zero();
-  state.normal_force = (normal_push.allFinite() ? normal_push : Vec3::Zero()) + state.pull;
-  const Vec3 rest_of_it = state.tissue_force - state.pull;
-  state.pressed = state.pull.squaredNorm() > rest_of_it.squaredNorm() ? pull_tissue : pressed;
+  const Vec3 push = normal_push.allFinite() ? normal_push : Vec3::Zero();
+  state.normal_force = push + state.pull;
+  // The heart's or the wall's push is rendered apart (console/local_model_of.cpp): it does not
+  // decide which tissue the normal channel is.
+  state.held = state.pull.squaredNorm() > 0 ? pull_tissue : Tissue::none;
+  state.pressed = state.pull.squaredNorm() > push.squaredNorm() ? pull_tissue : pressed;
 }
 
 }  // namespace imasim::surgery

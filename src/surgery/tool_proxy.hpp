@@ -49,6 +49,8 @@ struct ProxyState {
   Tissue pressed = Tissue::none;     // the tissue with the largest share of it
   Tissue stopped_by = Tissue::none;  // the heart or the wall, if their rows pushed the proxy
   Vec3 pull = Vec3::Zero();          // the held tissue's, on the jaws after the last step (unit: N)
+  Tissue held = Tissue::none;        // the tissue pulling, if any
+  Real coupling = 0;                 // the last step's k, which took the offset (unit: N/m)
 };
 
 // The force on the tool from the contact rows tagged `tag` over the last step of length dt:
@@ -61,8 +63,9 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
 
 // Before a step, with the instrument's contact rows gathered (`rows`): they name the body
 // (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
-// them touch (with none, of the surface that stopped it in the last step, else of the tissue
-// pressed in it; with none either, the fascia's), the bound and the offset the proxy ended the
+// them touch (with none, of the tissue it holds, else of the surface that stopped it in the last
+// step, else of the tissue pressed in it; with none either, the fascia's), the bound and the
+// offset the proxy ended the
 // last step with (its spring relaxed at the device). Each row takes its own tissue's friction (a
 // particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
@@ -73,9 +76,10 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
 // After a step of length dt: the offset the solve left, the force on the tool (everything the
 // body received over the step: the contacts' push and friction, the held tissue's pull, the heart's
 // and the wall's push; at rest k o), its normal channel (`normal_push`, the contacts' normal
-// impulses over dt from tissue_force_on_tool, plus the held tissue's `pull`), and the tissue
-// pressed (`pressed`, or `pull_tissue` when the pull is the larger part), and the surface that
-// stopped it (`stopped_by`). A non-finite pull or push is none.
+// impulses over dt from tissue_force_on_tool, plus the held tissue's `pull`), the tissue pressed
+// (`pressed`, or `pull_tissue` when the pull is the larger part of the channel), the tissue
+// held (`pull_tissue` while it pulls), the surface that stopped it (`stopped_by`) and the
+// coupling's k. A non-finite pull or push is none.
 void finish_proxy_step(const physics::ProxyBody& body, Real dt, const Vec3& normal_push,
                        Tissue pressed, const Vec3& pull, Tissue pull_tissue, Tissue stopped_by,
                        ProxyState& state);

@@ -12,6 +12,7 @@ physics::SolverParams default_solver() {
   s.coarse_stride = 4;   // the fat strands: 8 substeps
   s.bending_stride = 2;  // the fascia's bending: 16 projections per step
   s.stretch_sweeps = 2;  // the fascia's stretch: within 5 % of a finer solve under a tool
+  s.coarse_sweeps = 3;   // the strands pulled by the grasp: within 5 % of a finer solve
   return s;
 }
 
