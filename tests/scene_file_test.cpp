@@ -48,10 +48,11 @@ TEST(SceneFile, KeysNotGivenKeepTheirDefaults) {
   const ThoraxSceneParams q = parse_scene(
       "[anatomy]\nsternum_position_m = [-0.03, 0.001, 0.002]\npatient_seed = 12\n"
       "[ima_fat]\nseed = 7\n[solver]\nbending_stride = 1\nstretch_sweeps = 3\n"
-      "push_out_speed_m_per_s = 0.2\n",
+      "push_out_speed_m_per_s = 0.2\ncoarse_sweeps = 1\n",
       "s.toml");
   EXPECT_EQ(q.patch.solver.bending_stride, 1u);
   EXPECT_EQ(q.patch.solver.stretch_sweeps, 3u);
+  EXPECT_EQ(q.patch.solver.coarse_sweeps, 1u);
   EXPECT_EQ(q.patch.solver.push_out_speed, 0.2);
   EXPECT_EQ(q.patch.solver.coarse_stride, default_thorax_scene_params().patch.solver.coarse_stride);
   EXPECT_EQ(q.anatomy.sternum_position, Vec3(-0.03, 0.001, 0.002));
@@ -120,6 +121,8 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "bad.toml:2: key 'solver.bending_stride': expected an integer in [1, 1000], got 0"},
       {"[solver]\nstretch_sweeps = 5\n",
        "bad.toml:2: key 'solver.stretch_sweeps': expected an integer in [1, 4], got 5"},
+      {"[solver]\ncoarse_sweeps = 0\n",
+       "bad.toml:2: key 'solver.coarse_sweeps': expected an integer in [1, 4], got 0"},
       {"[solver]\npush_out_speed_m_per_s = 0\n",
        "bad.toml:2: key 'solver.push_out_speed_m_per_s': expected a number in [0.0001, 100], got "
        "0"},

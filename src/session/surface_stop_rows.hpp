@@ -22,8 +22,8 @@ void gather_surface_stop_rows(SurgicalSession& s, const Station& st, std::uint32
 // After the step, with the station's rows (`rows`) and the offset the solve carried its proxy
 // by: if any pushed the proxy, the one that pushed most becomes the station's stop (its point
 // where the step left it, the surface's normal and velocity, and the force of all that surface's
-// rows on the tool) and sets blocked_by_heart or
-// blocked_by_wall; returns that surface (none if no row pushed). dt: the step (unit: s).
+// rows on the tool) and sets blocked_by_heart or blocked_by_wall; returns that surface (none if
+// no row pushed). dt: the step (unit: s).
 surgery::Tissue note_surface_stop_rows(Station& st, std::span<const physics::BodyStopRow> rows,
                                        const Vec3& carried, Real dt);
 

@@ -65,9 +65,8 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
 // (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
 // them touch (with none, of the tissue it holds, else of the surface that stopped it in the last
 // step, else of the tissue pressed in it; with none either, the fascia's), the bound and the
-// offset the proxy ended the
-// last step with (its spring relaxed at the device). Each row takes its own tissue's friction (a
-// particle of no tissue keeps the row's).
+// offset the proxy ended the last step with (its spring relaxed at the device). Each row takes
+// its own tissue's friction (a particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
                         std::span<physics::ContactRow> rows, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
