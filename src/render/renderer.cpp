@@ -10,6 +10,7 @@
 #include "render/look_style.hpp"
 #include "render/shaders.hpp"
 #include "render/sphere_order.hpp"
+#include "render/sphere_shaders.hpp"
 
 namespace imasim::render {
 
@@ -45,39 +46,82 @@ float distance_from_eye(const Surface& s, const Camera& camera) {
 
 const std::array<float, 3> kBackground = {0.06f, 0.025f, 0.025f};  // the cavity's dark
 
+// The fat's spheres: centres and radii, per vertex for point sprites, per instance for the
+// rectangles (with the rectangle's four corners per vertex).
+struct SphereBuffers {
+  GLuint vao = 0, corner = 0, centre = 0, radius = 0;
+
+  explicit SphereBuffers(bool rectangles) {
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    const GLuint first = rectangles ? 1 : 0;
+    if (rectangles) {
+      const float corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
+      glGenBuffers(1, &corner);
+      glBindBuffer(GL_ARRAY_BUFFER, corner);
+      glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
+      glEnableVertexAttribArray(0);
+      glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+    }
+    glGenBuffers(1, &centre);
+    glBindBuffer(GL_ARRAY_BUFFER, centre);
+    glEnableVertexAttribArray(first);
+    glVertexAttribPointer(first, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glGenBuffers(1, &radius);
+    glBindBuffer(GL_ARRAY_BUFFER, radius);
+    glEnableVertexAttribArray(first + 1);
+    glVertexAttribPointer(first + 1, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+    if (rectangles) {
+      glVertexAttribDivisor(first, 1);
+      glVertexAttribDivisor(first + 1, 1);
+    }
+    glBindVertexArray(0);
+  }
+  ~SphereBuffers() {
+    const GLuint buffers[] = {corner, centre, radius};
+    glDeleteBuffers(3, buffers);  // 0 is ignored
+    glDeleteVertexArrays(1, &vao);
+  }
+  SphereBuffers(const SphereBuffers&) = delete;
+  SphereBuffers& operator=(const SphereBuffers&) = delete;
+
+  void fill(const std::vector<float>& centres, const std::vector<float>& radii) const {
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, centre);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(centres.size() * sizeof(float)), centres.data(),
+                 GL_STREAM_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, radius);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(radii.size() * sizeof(float)), radii.data(),
+                 GL_STREAM_DRAW);
+  }
+};
+
+std::string fragment_source(const char* main) {
+  return std::string("#version 330 core\n") + shaders::kLighting + main;
+}
+
+std::string sphere_fragment_source(const char* main) {
+  return std::string("#version 330 core\n") + shaders::kLighting + shaders::kSphereRayCast + main;
+}
+
 }  // namespace
 
 struct Renderer::Gl {
-  GlProgram surface{
-      shaders::kSurfaceVertex,
-      std::string("#version 330 core\n") + shaders::kLighting + shaders::kSurfaceFragmentMain};
-  GlProgram sphere{shaders::kSphereVertex, std::string("#version 330 core\n") + shaders::kLighting +
-                                               shaders::kSphereFragmentMain};
+  GlProgram surface{shaders::kSurfaceVertex, fragment_source(shaders::kSurfaceFragmentMain)};
+  GlProgram sphere_point{shaders::kSpherePointVertex,
+                         sphere_fragment_source(shaders::kSpherePointFragmentMain)};
+  GlProgram sphere_quad{shaders::kSphereQuadVertex,
+                        sphere_fragment_source(shaders::kSphereQuadFragmentMain)};
   std::vector<SurfaceBuffers> surfaces;
   std::vector<std::pair<float, std::size_t>> order;  // surfaces by distance, nearest first
-  GLuint sphere_vao = 0, sphere_corner = 0, sphere_centre = 0, sphere_radius = 0;
+  SphereBuffers points{false}, rectangles{true};
   SphereOrder sphere_order;  // the fat nearest first (sphere_order.hpp)
+  float max_point_size = 1;  // the largest sprite the rasteriser draws (unit: pixel)
 
   Gl() {
-    glGenVertexArrays(1, &sphere_vao);
-    glBindVertexArray(sphere_vao);
-    const float corners[] = {-1, -1, 1, -1, -1, 1, 1, 1};
-    glGenBuffers(1, &sphere_corner);
-    glBindBuffer(GL_ARRAY_BUFFER, sphere_corner);
-    glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glGenBuffers(1, &sphere_centre);
-    glBindBuffer(GL_ARRAY_BUFFER, sphere_centre);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glVertexAttribDivisor(1, 1);
-    glGenBuffers(1, &sphere_radius);
-    glBindBuffer(GL_ARRAY_BUFFER, sphere_radius);
-    glEnableVertexAttribArray(2);
-    glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glVertexAttribDivisor(2, 1);
-    glBindVertexArray(0);
+    GLfloat range[2] = {1, 1};
+    glGetFloatv(GL_POINT_SIZE_RANGE, range);
+    max_point_size = range[1];
   }
 
   ~Gl() {
@@ -86,9 +130,6 @@ struct Renderer::Gl {
       glDeleteBuffers(4, buffers);
       glDeleteVertexArrays(1, &b.vao);
     }
-    const GLuint buffers[] = {sphere_corner, sphere_centre, sphere_radius};
-    glDeleteBuffers(3, buffers);
-    glDeleteVertexArrays(1, &sphere_vao);
   }
 
   SurfaceBuffers& buffers(std::size_t i) {
@@ -143,20 +184,20 @@ struct Renderer::Gl {
 Renderer::Renderer() : gl_(std::make_unique<Gl>()) {}
 Renderer::~Renderer() = default;
 
+std::array<float, 3> background_colour(DrawMode mode) {
+  return mode == DrawMode::look_colours ? std::array<float, 3>{0, 0, 0} : kBackground;
+}
+
 void Renderer::draw(const RenderFrame& frame, const Camera& camera, const Viewport& viewport,
-                    DrawMode mode, std::array<bool, 3> colour_mask, bool clear) {
+                    DrawMode mode, std::array<bool, 3> colour_mask, Clear clear) {
   glViewport(viewport.x, viewport.y, viewport.width, viewport.height);
   glEnable(GL_SCISSOR_TEST);
   glScissor(viewport.x, viewport.y, viewport.width, viewport.height);
   glColorMask(colour_mask[0], colour_mask[1], colour_mask[2], GL_TRUE);
-  if (clear) {
-    if (mode == DrawMode::look_colours)
-      glClearColor(0, 0, 0, 1);
-    else
-      glClearColor(kBackground[0], kBackground[1], kBackground[2], 1);
+  if (clear == Clear::viewport) {
+    const std::array<float, 3> b = background_colour(mode);
+    glClearColor(b[0], b[1], b[2], 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  } else {
-    glClear(GL_DEPTH_BUFFER_BIT);
   }
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -195,17 +236,28 @@ void Renderer::draw(const RenderFrame& frame, const Camera& camera, const Viewpo
   }
 
   if (frame.fat.count() > 0) {
-    gl_->set_common(gl_->sphere, frame, camera, mode);
-    gl_->set_look(gl_->sphere, frame.fat.look, mode);
-    gl_->sphere_order.sort(frame.fat, camera.eye);
-    glBindVertexArray(gl_->sphere_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_->sphere_centre);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(gl_->sphere_order.centres().size() * sizeof(float)),
-                 gl_->sphere_order.centres().data(), GL_STREAM_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, gl_->sphere_radius);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(gl_->sphere_order.radii().size() * sizeof(float)),
-                 gl_->sphere_order.radii().data(), GL_STREAM_DRAW);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(frame.fat.count()));
+    SphereOrder& order = gl_->sphere_order;
+    order.sort(frame.fat, camera.eye);
+    order.split_sprites(camera, float(viewport.width), float(viewport.height),
+                        0.9f * gl_->max_point_size);
+    // The nearest first: the rectangles of spheres too big for a sprite (seldom any), then the
+    // sprites.
+    if (!order.near_radii().empty()) {
+      gl_->set_common(gl_->sphere_quad, frame, camera, mode);
+      gl_->set_look(gl_->sphere_quad, frame.fat.look, mode);
+      gl_->rectangles.fill(order.near_centres(), order.near_radii());
+      glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(order.near_radii().size()));
+    }
+    if (!order.radii().empty()) {
+      gl_->set_common(gl_->sphere_point, frame, camera, mode);
+      gl_->set_look(gl_->sphere_point, frame.fat.look, mode);
+      glUniform4f(gl_->sphere_point.uniform("u_viewport"), float(viewport.x), float(viewport.y),
+                  float(viewport.width), float(viewport.height));
+      gl_->points.fill(order.centres(), order.radii());
+      glEnable(GL_PROGRAM_POINT_SIZE);
+      glDrawArrays(GL_POINTS, 0, GLsizei(order.radii().size()));
+      glDisable(GL_PROGRAM_POINT_SIZE);
+    }
   }
   glDisable(GL_CULL_FACE);
   glBindVertexArray(0);

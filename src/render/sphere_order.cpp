@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/sphere_sprite.hpp"
+
 namespace imasim::render {
 
 void SphereOrder::sort(const Spheres& spheres, const std::array<float, 3>& eye) {
@@ -39,6 +41,27 @@ void SphereOrder::sort(const Spheres& spheres, const std::array<float, 3>& eye) 
                 centres_.begin() + std::ptrdiff_t(3 * j));
     radii_[j] = spheres.radii[i];
   }
+}
+
+void SphereOrder::split_sprites(const Camera& camera, float width, float height,
+                                float max_sprite_px) {
+  near_centres_.clear();
+  near_radii_.clear();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < radii_.size(); ++i) {
+    const std::array<float, 3> c{centres_[3 * i], centres_[3 * i + 1], centres_[3 * i + 2]};
+    const SpriteBounds b = sphere_sprite(camera, c, radii_[i], width, height);
+    if (b.kind == SpriteBounds::Kind::outside) continue;
+    if (b.kind == SpriteBounds::Kind::at_eye || b.size_px > max_sprite_px) {
+      near_centres_.insert(near_centres_.end(), c.begin(), c.end());
+      near_radii_.push_back(radii_[i]);
+      continue;
+    }
+    std::copy(c.begin(), c.end(), centres_.begin() + std::ptrdiff_t(3 * kept));
+    radii_[kept++] = radii_[i];
+  }
+  centres_.resize(3 * kept);
+  radii_.resize(kept);
 }
 
 }  // namespace imasim::render

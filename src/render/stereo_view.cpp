@@ -17,23 +17,23 @@ float stereo_aspect(const std::string& name, int width, int height) {
 }
 
 void draw_view(Renderer& renderer, const RenderFrame& frame, const Camera& camera, StereoMode mode,
-               int width, int height, const StereoParams& stereo, int x, int y) {
+               int width, int height, const StereoParams& stereo, int x, int y, Clear clear) {
   switch (mode) {
     case StereoMode::none:
-      renderer.draw(frame, camera, {x, y, width, height});
+      renderer.draw(frame, camera, {x, y, width, height}, DrawMode::lit, {true, true, true}, clear);
       return;
     case StereoMode::side_by_side: {
       const int half = width / 2;
       renderer.draw(frame, stereo_eye(camera, -1, stereo.separation, stereo.convergence),
-                    {x, y, half, height});
+                    {x, y, half, height}, DrawMode::lit, {true, true, true}, clear);
       renderer.draw(frame, stereo_eye(camera, +1, stereo.separation, stereo.convergence),
-                    {x + half, y, width - half, height});
+                    {x + half, y, width - half, height}, DrawMode::lit, {true, true, true}, clear);
       return;
     }
     case StereoMode::anaglyph:
       renderer.draw(frame, stereo_eye(camera, -1, stereo.separation, stereo.convergence),
-                    {x, y, width, height}, DrawMode::lit, {true, false, false});
-      // The right eye over the left: the clear and the drawing touch only green and blue.
+                    {x, y, width, height}, DrawMode::lit, {true, false, false}, clear);
+      // The right eye over the left: its clear and its drawing touch only green and blue.
       renderer.draw(frame, stereo_eye(camera, +1, stereo.separation, stereo.convergence),
                     {x, y, width, height}, DrawMode::lit, {false, true, true});
       return;

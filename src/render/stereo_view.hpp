@@ -20,8 +20,10 @@ StereoMode stereo_mode(const std::string& name);
 // The aspect one eye's image has (half the width side by side).
 float stereo_aspect(const std::string& name, int width, int height);
 
-// Draws `camera`'s view into the bound framebuffer of size width x height.
+// Draws `camera`'s view into the rectangle of the bound framebuffer at x, y of size
+// width x height. Clear::done_by_caller: the caller has cleared the rectangle (renderer.hpp).
 void draw_view(Renderer& renderer, const RenderFrame& frame, const Camera& camera, StereoMode mode,
-               int width, int height, const StereoParams& stereo = {}, int x = 0, int y = 0);
+               int width, int height, const StereoParams& stereo = {}, int x = 0, int y = 0,
+               Clear clear = Clear::viewport);
 
 }  // namespace imasim::render
