@@ -23,8 +23,8 @@ constexpr bool kPortable = true;
 constexpr bool kPortable = false;
 #endif
 
-constexpr std::uint64_t kClothHash = 0x87d390005a5391dfull;
-constexpr std::uint64_t kSessionHash = 0xc46d49e2adf9ef36ull;
+constexpr std::uint64_t kClothHash = 0x4b3e03bcb505667dull;
+constexpr std::uint64_t kSessionHash = 0x9f969171f4517fecull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

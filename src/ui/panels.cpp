@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "ui/peak_envelope.hpp"
+
 namespace imasim::ui {
 
 namespace {
@@ -91,11 +93,10 @@ void forces_panel(const LiveNumbers& n) {
                 double(h.force_tangential), double(h.force_thermal));
     for (std::size_t c = 0; c < 3; ++c) {
       ImGui::PushID(int(3 * k + c));
-      // eq. 17's bound is 5 N, eq. 18's 2 N: one scale for all keeps them comparable. Every
-      // second sample, the newest included: each segment is two triangles for the software
-      // rasteriser, and 240 a plot were a twentieth of the frame (docs/PERFORMANCE.md).
-      ImGui::PlotLines("", h.history[c].data() + 1, int(h.history[c].size() / 2), 0, kChannels[c],
-                       0.0f, 5.0f, ImVec2(float(kPanelWidth) - 20, 22), int(2 * sizeof(float)));
+      // eq. 17's bound is 5 N, eq. 18's 2 N: one scale for all keeps them comparable.
+      const auto peaks = peak_envelope<4>(h.history[c]);
+      ImGui::PlotLines("", peaks.data(), int(peaks.size()), 0, kChannels[c], 0.0f, 5.0f,
+                       ImVec2(float(kPanelWidth) - 20, 22));
       ImGui::PopID();
     }
   }
