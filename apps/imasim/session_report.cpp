@@ -9,12 +9,14 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
         surgery::EventKind::strand_cut, surgery::EventKind::cautery_on,
         surgery::EventKind::cautery_off, surgery::EventKind::contact_begin,
         surgery::EventKind::contact_end, surgery::EventKind::injury,
-        surgery::EventKind::cut_refused, surgery::EventKind::fragment_vaporised}) {
+        surgery::EventKind::cut_refused, surgery::EventKind::fragment_vaporised,
+        surgery::EventKind::strand_torn}) {
     events[surgery::to_string(kind)] = s.events.count(kind);
   }
   out["events"] = events;
   out["fascia_edges_cut"] = s.fascia_edges_cut;
   out["strands_cut"] = s.strands_cut;
+  out["strands_torn"] = s.strands_torn;
   out["cautery_energy_j"] = s.cautery_energy;
   std::size_t coagulated = 0, injured = 0;
   for (std::uint8_t c : s.cautery.coagulated)

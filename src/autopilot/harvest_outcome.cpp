@@ -33,7 +33,7 @@ HarvestOutcome harvest_outcome(const session::SurgicalSession& s, const HarvestP
     const std::uint32_t end = vessel_first ? set.particle(k, 0) : set.particle(k, set.segments);
     if (!beside_segment(w.state.particles.rest_position[end], plan.segment)) continue;
     ++out.pedicle_strands;
-    if (set.cut[k]) ++out.pedicle_strands_divided;
+    if (set.cut[k] == tissue::kStrandDivided) ++out.pedicle_strands_divided;  // not torn
   }
   out.fascia_edges_cut = s.fascia_edges_cut;
   for (const surgery::Event& e : s.events.events)

@@ -49,6 +49,9 @@ constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, k
       SceneKey{table ".linear_damping",                                                           \
                RealRef([](P& p) { return &p.patch.member.linear_damping; }), 0, 0.99,             \
                "k_l of eq. 4: share of velocity removed per 5 ms"},                               \
+      SceneKey{table ".tear_stretch", RealRef([](P& p) { return &p.patch.member.tear_stretch; }), \
+               1.01, 1e3,                                                                         \
+               "a strand tears with its ends this many times their rest distance apart"},         \
       SceneKey{table ".xsph_coefficient",                                                         \
                RealRef([](P& p) { return &p.patch.member.xsph_coefficient; }), 0, 1,              \
                "share of the neighbours' mean velocity taken per step (XSPH)"},                   \

@@ -384,7 +384,16 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
     record_contacts(s, k, st, time);
   }
   r.profile[physics::Stage::contacts] += clock.lap();
-  // 6. Dissolving strands; surfaces again if contact moved tissue.
+  // 6. Strands stretched past tearing let go (a piece of fascia the cuts freed falls away with
+  // their ends); divided and torn strands dissolve; surfaces again if contact moved tissue.
+  s.strand_tears.clear();
+  if (const std::uint32_t torn = tissue::tear_overstretched_strands(w, s.strand_tears); torn > 0) {
+    s.strands_torn += torn;
+    Real worst = 0;
+    for (const tissue::StrandTear& t : s.strand_tears)
+      worst = std::max(worst, t.stretch);
+    s.events.add(time, EventKind::strand_torn, 1, Tissue::fat, torn, worst);
+  }
   surgery::dissolve_cut_strands(w, s.params.strand_cut);
   r.profile[physics::Stage::cutting] += clock.lap();
   if (moved) tissue::finish_tissue_step(w);

@@ -29,6 +29,7 @@
 #include "surgery/strand_cut.hpp"
 #include "surgery/tool_contact.hpp"
 #include "surgery/tool_proxy.hpp"
+#include "tissue/strand_tear.hpp"
 
 namespace imasim::session {
 
@@ -98,8 +99,10 @@ struct SurgicalSession {
   std::vector<surgery::Tissue> object_tissue;  // per physics object
   std::vector<surgery::ToolContact> contacts;  // scratch
   std::vector<surgery::StrandCut> strand_cuts;
+  std::vector<tissue::StrandTear> strand_tears;
   // Totals for reports.
   std::uint64_t fascia_edges_cut = 0, strands_cut = 0;
+  std::uint64_t strands_torn = 0;  // stretched past their tear_stretch (tissue/strand_tear.hpp)
   std::uint64_t fragments_vaporised = 0;  // small free pieces of fascia taken out after cuts
   // Warnings: tissue found inside an instrument after the step (the solve's contacts missed it),
   // cuts refused for want of spare vertices.

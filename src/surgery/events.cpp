@@ -26,6 +26,8 @@ const char* to_string(EventKind kind) {
       return "cut_refused";
     case EventKind::fragment_vaporised:
       return "fragment_vaporised";
+    case EventKind::strand_torn:
+      return "strand_torn";
   }
   return "unknown";
 }

@@ -24,6 +24,8 @@ enum class EventKind : std::uint8_t {
   cut_refused,    // a fascia cut not made: no spare vertices left (a warning, never silent)
   fragment_vaporised,  // small free pieces of fascia taken out after a cut; count = triangles,
                        // value = their rest area (unit: m^2)
+  strand_torn,         // strands stretched past their tear_stretch; count = strands, value =
+                       // the largest stretch (ends' distance over rest distance)
 };
 
 enum class Tissue : std::uint8_t { none, fascia, ima, fat, heart, chest_wall };

@@ -61,7 +61,7 @@ std::uint32_t cut_strands(tissue::TissueWorld& w, const CutPlane& plane, Real om
         // speed guard.
         for (std::uint32_t j = 0; j < set.segments; ++j)
           w.state.constraints.distance.remove(set.segment_constraint[i * set.segments + j]);
-        set.cut[i] = 1;
+        set.cut[i] = tissue::kStrandDivided;
         cuts.push_back({s, i, k});
         ++count;
         break;

@@ -70,11 +70,11 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   }
   if (!(p.diameter > 0) || !(p.total_mass > 0) || !(p.xsph_radius > 0) ||
       !(std::isfinite(p.youngs_modulus) && p.youngs_modulus > 0) ||
-      !(p.xsph_coefficient >= 0 && p.xsph_coefficient <= 1)) {
+      !(p.xsph_coefficient >= 0 && p.xsph_coefficient <= 1) || !(p.tear_stretch > 1)) {
     throw std::invalid_argument(
         p.name +
         ": diameter, total_mass, youngs_modulus and xsph_radius must be > 0, "
-        "xsph_coefficient in [0, 1]");
+        "xsph_coefficient in [0, 1], tear_stretch > 1");
   }
   const StrandGeneration gen =
       generate_strands(current_mesh(world, world.meshes[mesh_a]),
@@ -88,6 +88,7 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   set.strand_count = static_cast<std::uint32_t>(gen.strands.size());
   set.xsph_coefficient = p.xsph_coefficient;
   set.xsph_radius = p.xsph_radius;
+  set.tear_stretch = p.tear_stretch;
   physics::Particles& P = world.state.particles;
   set.first_particle = static_cast<std::uint32_t>(P.size());
   const std::uint32_t n = set.segments;
@@ -116,7 +117,7 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
     set.end_a.push_back({g.face_a, g.bary_a, 0});
     set.end_b.push_back({g.face_b, g.bary_b, 0});
     set.face_a.push_back(g.face_a);
-    set.cut.push_back(0);
+    set.cut.push_back(kStrandIntact);
   }
   build_neighbours(set, P);
   world.strands.push_back(std::move(set));

@@ -23,6 +23,12 @@ struct StrandSetParams {
   // face, A_s = face area / sigma, so a segment of length L has k = E A_s / L: the layer's
   // stiffness depends on neither sigma, n nor the mesh.
   Real youngs_modulus = Real(3250);
+  // Stretch at which a strand tears: its ends further apart than this many times their rest
+  // distance. Not a measured rupture strain: the scripted harvests stretch strands up to 2.05
+  // times by retraction (docs/tissue.md), and a strand whose end rides on a piece of fascia that
+  // fell away would otherwise be stretched tens of times, its particles jittering metres a second
+  // until the step's speed guard stops the run.
+  Real tear_stretch = Real(3);
   Real xsph_coefficient = Real(0.3);  // share of the neighbours' mean velocity taken per step
   Real xsph_radius = Real(4e-3);      // neighbourhood at rest (unit: m)
 };

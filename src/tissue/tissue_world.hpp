@@ -57,6 +57,9 @@ struct VisualMesh {
   std::vector<Vec3> positions;                     // refreshed every step (unit: m)
 };
 
+// StrandSet::cut: intact, divided by the cautery (eq. 10-12), or torn (strand_tear.hpp).
+inline constexpr std::uint8_t kStrandIntact = 0, kStrandDivided = 1, kStrandTorn = 2;
+
 // Connective-tissue strands between two mesh objects (2.3.4). Strand s owns particles
 // first_particle + s * (segments + 1) ... + segments; its first and last particles are its ends,
 // kinematic (inverse mass 0) and placed on their surfaces every step through the bindings.
@@ -70,10 +73,13 @@ struct StrandSet {
   std::vector<geometry::SurfaceBinding> end_a, end_b;  // per strand, on mesh_a and mesh_b
   std::vector<std::uint32_t> face_a;                   // source face of each strand on mesh_a
   std::vector<Real> diameter;  // per strand particle, for drawing (unit: m); 0 = removed
-  // Cutting (surgery/strand_cut.hpp): the distance constraint of each segment (strand * n + k,
-  // stale once removed) and whether each strand has been cut.
+  // Cutting (surgery/strand_cut.hpp) and tearing (strand_tear.hpp): the distance constraint of
+  // each segment (strand * n + k, stale once removed) and each strand's state (kStrandIntact,
+  // kStrandDivided, kStrandTorn); a strand that is not intact has let go and dissolves.
   std::vector<physics::DistanceHandle> segment_constraint;
   std::vector<std::uint8_t> cut;
+  // A strand tears when its ends are further apart than this many times their rest distance.
+  Real tear_stretch = 0;
   // XSPH smoothing (SPEC S2): the neighbours at rest, each pair once from its lower index (over
   // the set's particles): pairs pair_start[k] .. pair_start[k + 1] are (k, pair_upper[p]) in
   // ascending order, and pair_lower[p] = k (for passes over all pairs); the smoothing
