@@ -1,9 +1,11 @@
 // BM_TissueStep: one 5 ms step of the default thoracic-wall patch (fascia, IMA coarse + fine,
 // IMA and fascia fat strands, chest wall, couplings), on 1 or 2 threads.
 // BM_StrandGeneration: generating the fascia-to-wall strands of that patch.
+// BM_StrandTearCheck: the session's per-step check of that patch's strands for tearing, none torn.
 #include <benchmark/benchmark.h>
 
 #include "physics/executor.hpp"
+#include "tissue/strand_tear.hpp"
 #include "tissue/thoracic_patch.hpp"
 #include "tissue/tissue_step.hpp"
 
@@ -29,6 +31,20 @@ BENCHMARK(BM_TissueStep)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+void BM_StrandTearCheck(benchmark::State& bench) {
+  tissue::ThoracicPatch patch =
+      tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
+  std::vector<tissue::StrandTear> torn;
+  std::uint32_t strands = 0;
+  for (const tissue::StrandSet& set : patch.world.strands)
+    strands += set.strand_count;
+  for (auto _ : bench)
+    benchmark::DoNotOptimize(tissue::tear_overstretched_strands(patch.world, torn));
+  if (!torn.empty()) bench.SkipWithError("a strand tore at rest");
+  bench.counters["strands"] = strands;
+}
+BENCHMARK(BM_StrandTearCheck)->Unit(benchmark::kMicrosecond);
 
 void BM_StrandGeneration(benchmark::State& bench) {
   const tissue::ThoracicPatchParams params = tissue::default_thoracic_patch_params();
