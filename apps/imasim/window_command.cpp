@@ -45,6 +45,7 @@ nlohmann::ordered_json score_json(const ui::ScoreCard& c) {
   j["duration_s"] = c.duration_s;
   j["strands_cut"] = c.strands_cut;
   j["strands_total"] = c.strands_total;
+  j["strands_torn"] = c.strands_torn;
   j["fascia_edges_cut"] = c.fascia_edges_cut;
   j["ima_injuries"] = c.ima_injuries;
   j["instrument_collisions"] = c.instrument_collisions;

@@ -53,6 +53,7 @@ struct LiveNumbers {
   Real power_w = 0;     // the generator's setting (unit: W)
   Real optics_rad = 0;  // the endoscope's optics (unit: rad)
   std::uint64_t events = 0, fascia_edges_cut = 0, strands_cut = 0, strands_total = 0;
+  std::uint64_t strands_torn = 0;  // pulled apart, not divided (tissue/strand_tear.hpp)
   std::uint64_t ima_injuries = 0;  // injury events
   std::uint64_t grasps = 0;
   // contact_begin events per tissue (surgery::Tissue's order): touches of the heart, the IMA...

@@ -107,6 +107,7 @@ void metrics_panel(const LiveNumbers& n) {
   ImGui::Text("events %llu, grasps %llu", u(n.events), u(n.grasps));
   ImGui::Text("fascia edges cut %llu, strands cut %llu / %llu", u(n.fascia_edges_cut),
               u(n.strands_cut), u(n.strands_total));
+  ImGui::Text("strands torn %llu", u(n.strands_torn));
   ImGui::Text("IMA injuries %llu", u(n.ima_injuries));
   ImGui::Text("touches: heart %llu, chest wall %llu, IMA %llu",
               u(n.contacts_begun[std::size_t(surgery::Tissue::heart)]),
@@ -154,8 +155,8 @@ void score_window(const ScoreCard& c, ViewState& view, int width, std::vector<Co
   if (ImGui::Begin("Score card", &view.show_score, ImGuiWindowFlags_NoSavedSettings)) {
     const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
     ImGui::Text("%s heart, %.1f s", c.beating ? "dynamic" : "static", c.duration_s);
-    ImGui::Text("strands cut %llu of %llu, fascia edges cut %llu", u(c.strands_cut),
-                u(c.strands_total), u(c.fascia_edges_cut));
+    ImGui::Text("strands cut %llu of %llu, torn %llu; fascia edges cut %llu", u(c.strands_cut),
+                u(c.strands_total), u(c.strands_torn), u(c.fascia_edges_cut));
     ImGui::Text("IMA injuries %llu (%llu particles)", u(c.ima_injuries),
                 u(c.ima_injured_particles));
     ImGui::Text("collisions: instruments %d, heart touches %llu, chest wall %llu, IMA %llu",

@@ -89,6 +89,7 @@ ScoreCard SessionScore::score_card(const session::SurgicalSession& s) const {
   const tissue::TissueWorld& w = s.scene.patch.world;
   c.duration_s = w.state.time;
   c.strands_cut = s.strands_cut;
+  c.strands_torn = s.strands_torn;
   c.strands_total = w.strands[s.scene.patch.ima_fat].strand_count +
                     w.strands[s.scene.patch.fascia_fat].strand_count;
   c.fascia_edges_cut = s.fascia_edges_cut;

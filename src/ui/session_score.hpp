@@ -19,6 +19,7 @@ namespace imasim::ui {
 struct ScoreCard {
   double duration_s = 0;
   std::uint64_t strands_cut = 0, strands_total = 0, fascia_edges_cut = 0;
+  std::uint64_t strands_torn = 0;  // pulled apart, not divided: rough handling
   std::uint64_t ima_injuries = 0, ima_injured_particles = 0;
   std::uint64_t heart_touches = 0, wall_touches = 0, ima_touches = 0;
   int instrument_collisions = 0;

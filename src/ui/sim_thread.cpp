@@ -267,6 +267,7 @@ void SimThread::publish(bool frame) {
     n.events = s.events.events.size();
     n.fascia_edges_cut = s.fascia_edges_cut;
     n.strands_cut = s.strands_cut;
+    n.strands_torn = s.strands_torn;
     n.strands_total = w.strands[s.scene.patch.ima_fat].strand_count +
                       w.strands[s.scene.patch.fascia_fat].strand_count;
     // Only the events since the last publication: a long session has many.
