@@ -3,11 +3,13 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <vector>
 
 #include "render/gl_program.hpp"
 #include "render/look_style.hpp"
+#include "render/shader_variant.hpp"
 #include "render/shaders.hpp"
 #include "render/sphere_order.hpp"
 #include "render/sphere_shaders.hpp"
@@ -96,22 +98,40 @@ struct SphereBuffers {
   }
 };
 
-std::string fragment_source(const char* main) {
-  return std::string("#version 330 core\n") + shaders::kLighting + main;
+std::string surface_fragment(ShaderVariant v) {
+  return variant_fragment_source(v,
+                                 std::string(shaders::kLighting) + shaders::kSurfaceFragmentMain);
 }
 
-std::string sphere_fragment_source(const char* main) {
-  return std::string("#version 330 core\n") + shaders::kLighting + shaders::kSphereRayCast + main;
+std::string sphere_fragment(ShaderVariant v, const char* main) {
+  return variant_fragment_source(v,
+                                 std::string(shaders::kLighting) + shaders::kSphereRayCast + main);
+}
+
+// The three programs of one variant of the lighting (shader_variant.hpp).
+struct Programs {
+  GlProgram surface, sphere_point, sphere_quad;
+
+  explicit Programs(ShaderVariant v)
+      : surface(shaders::kSurfaceVertex, surface_fragment(v)),
+        sphere_point(shaders::kSpherePointVertex,
+                     sphere_fragment(v, shaders::kSpherePointFragmentMain)),
+        sphere_quad(shaders::kSphereQuadVertex,
+                    sphere_fragment(v, shaders::kSphereQuadFragmentMain)) {}
+};
+
+ShaderVariant variant_of(DrawMode mode, const RenderFrame& frame) {
+  if (mode == DrawMode::look_colours) return ShaderVariant::key_colours;
+  return frame.glow && frame.glow_strength > 0 ? ShaderVariant::lit_with_glow : ShaderVariant::lit;
 }
 
 }  // namespace
 
 struct Renderer::Gl {
-  GlProgram surface{shaders::kSurfaceVertex, fragment_source(shaders::kSurfaceFragmentMain)};
-  GlProgram sphere_point{shaders::kSpherePointVertex,
-                         sphere_fragment_source(shaders::kSpherePointFragmentMain)};
-  GlProgram sphere_quad{shaders::kSphereQuadVertex,
-                        sphere_fragment_source(shaders::kSphereQuadFragmentMain)};
+  // All variants are compiled up front, so that a shader error shows when the renderer is made.
+  std::array<Programs, kShaderVariantCount> programs{Programs(ShaderVariant::lit),
+                                                     Programs(ShaderVariant::lit_with_glow),
+                                                     Programs(ShaderVariant::key_colours)};
   std::vector<SurfaceBuffers> surfaces;
   std::vector<std::pair<float, std::size_t>> order;  // surfaces by distance, nearest first
   SphereBuffers points{false}, rectangles{true};
@@ -170,14 +190,14 @@ struct Renderer::Gl {
     glUseProgram(p.id());
     glUniformMatrix4fv(p.uniform("u_view"), 1, GL_FALSE, camera.view.data());
     glUniformMatrix4fv(p.uniform("u_projection"), 1, GL_FALSE, camera.projection.data());
-    glUniform1i(p.uniform("u_key"), mode == DrawMode::look_colours ? 1 : 0);
+    if (variant_of(mode, frame) != ShaderVariant::lit_with_glow) return;
     const float* v = camera.view.data();
     const std::array<float, 3>& g = frame.glow_position;
     const float gx = v[0] * g[0] + v[4] * g[1] + v[8] * g[2] + v[12];
     const float gy = v[1] * g[0] + v[5] * g[1] + v[9] * g[2] + v[13];
     const float gz = v[2] * g[0] + v[6] * g[1] + v[10] * g[2] + v[14];
     glUniform3f(p.uniform("u_glow_position"), gx, gy, gz);
-    glUniform1f(p.uniform("u_glow"), mode == DrawMode::lit && frame.glow ? frame.glow_strength : 0);
+    glUniform1f(p.uniform("u_glow"), frame.glow_strength);
   }
 };
 
@@ -204,7 +224,8 @@ void Renderer::draw(const RenderFrame& frame, const Camera& camera, const Viewpo
   glCullFace(GL_BACK);
   glFrontFace(GL_CCW);
 
-  gl_->set_common(gl_->surface, frame, camera, mode);
+  Programs& programs = gl_->programs[std::size_t(variant_of(mode, frame))];
+  gl_->set_common(programs.surface, frame, camera, mode);
   // Nearest surfaces first: what they hide then fails the depth test before it is shaded.
   gl_->order.clear();
   for (std::size_t i = 0; i < frame.surfaces.size(); ++i)
@@ -226,7 +247,7 @@ void Renderer::draw(const RenderFrame& frame, const Camera& camera, const Viewpo
                  GL_STREAM_DRAW);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(s.indices.size() * sizeof(std::uint32_t)),
                  s.indices.data(), GL_STREAM_DRAW);
-    gl_->set_look(gl_->surface, s.look, mode);
+    gl_->set_look(programs.surface, s.look, mode);
     // Closed surfaces hide their own back faces: not rasterising them saves their shading.
     if (is_closed(s.look))
       glEnable(GL_CULL_FACE);
@@ -243,15 +264,15 @@ void Renderer::draw(const RenderFrame& frame, const Camera& camera, const Viewpo
     // The nearest first: the rectangles of spheres too big for a sprite (seldom any), then the
     // sprites.
     if (!order.near_radii().empty()) {
-      gl_->set_common(gl_->sphere_quad, frame, camera, mode);
-      gl_->set_look(gl_->sphere_quad, frame.fat.look, mode);
+      gl_->set_common(programs.sphere_quad, frame, camera, mode);
+      gl_->set_look(programs.sphere_quad, frame.fat.look, mode);
       gl_->rectangles.fill(order.near_centres(), order.near_radii());
       glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(order.near_radii().size()));
     }
     if (!order.radii().empty()) {
-      gl_->set_common(gl_->sphere_point, frame, camera, mode);
-      gl_->set_look(gl_->sphere_point, frame.fat.look, mode);
-      glUniform4f(gl_->sphere_point.uniform("u_viewport"), float(viewport.x), float(viewport.y),
+      gl_->set_common(programs.sphere_point, frame, camera, mode);
+      gl_->set_look(programs.sphere_point, frame.fat.look, mode);
+      glUniform4f(programs.sphere_point.uniform("u_viewport"), float(viewport.x), float(viewport.y),
                   float(viewport.width), float(viewport.height));
       gl_->points.fill(order.centres(), order.radii());
       glEnable(GL_PROGRAM_POINT_SIZE);

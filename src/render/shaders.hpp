@@ -5,15 +5,22 @@ namespace imasim::render::shaders {
 
 // Shared lighting: Blinn-Phong with a narrow, strong highlight and a Fresnel rim (wet tissue
 // reflects the scope's light sharply at grazing angles), coagulation browning, the cautery glow.
+// Compiled in three variants (render/shader_variant.hpp), chosen by the two macros below. A
+// branch on a uniform does not skip code on llvmpipe: it runs both sides for every pixel under
+// a mask, so the glow's lighting, tested against a zero strength, cost a fifth of the surfaces'
+// shading while the pedal was up (docs/PERFORMANCE.md, sixteenth entry).
 inline constexpr const char* kLighting = R"(
 uniform vec3 u_colour;
 uniform float u_specular;
 uniform float u_shininess;
-uniform int u_key;            // 1: flat key colour, unlit
+#if IMASIM_GLOW
 uniform vec3 u_glow_position; // camera space
 uniform float u_glow;
+#endif
 vec3 shade_colour(vec3 p, vec3 n, float coagulation) {
-  if (u_key == 1) return u_colour;
+#if IMASIM_KEY_COLOURS
+  return u_colour;  // flat key colour, unlit
+#else
   float distance2 = dot(p, p);
   float inv_distance = inversesqrt(distance2);
   vec3 v = -p * inv_distance;
@@ -35,13 +42,14 @@ vec3 shade_colour(vec3 p, vec3 n, float coagulation) {
   float fresnel = grazing2 * grazing2 * grazing;
   vec3 colour = base * (0.18 + 0.9 * facing * light) + vec3(wet * highlight * light)
                 + 0.08 * fresnel * vec3(1.0, 0.9, 0.9);
-  if (u_glow > 0.0) {
-    vec3 to_glow = u_glow_position - p;
-    float d2 = dot(to_glow, to_glow);
-    float lit = max(dot(n, to_glow) * inversesqrt(max(d2, 1e-12)), 0.0);
-    colour += u_glow * vec3(1.0, 0.55, 0.15) * (0.2 + lit) / (1.0 + d2 / 2.5e-5);
-  }
+#if IMASIM_GLOW
+  vec3 to_glow = u_glow_position - p;
+  float d2 = dot(to_glow, to_glow);
+  float lit = max(dot(n, to_glow) * inversesqrt(max(d2, 1e-12)), 0.0);
+  colour += u_glow * vec3(1.0, 0.55, 0.15) * (0.2 + lit) / (1.0 + d2 / 2.5e-5);
+#endif
   return clamp(colour, 0.0, 1.0);
+#endif
 }
 )";
 
