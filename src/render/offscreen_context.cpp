@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -24,6 +25,11 @@ namespace {
     return std::string(b);
   }() + "); Mesa's EGL (libegl-mesa0, libgl1-mesa-dri) is needed");
 }
+
+// Contexts alive in this process. EGL gives every caller the same surfaceless display, and
+// eglTerminate ends every context on it: only the last context to go may terminate it.
+std::mutex live_mutex;
+int live_contexts = 0;
 
 }  // namespace
 
@@ -62,20 +68,29 @@ OffscreenContext::OffscreenContext(int width, int height)
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw std::runtime_error("offscreen rendering: the framebuffer is incomplete");
+  const std::lock_guard<std::mutex> lock(live_mutex);
+  ++live_contexts;
 }
 
 OffscreenContext::~OffscreenContext() {
-  if (egl_->context != EGL_NO_CONTEXT) {
-    glDeleteRenderbuffers(1, &depth_);
-    glDeleteRenderbuffers(1, &colour_);
-    glDeleteFramebuffers(1, &framebuffer_);
-    eglMakeCurrent(egl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-    eglDestroyContext(egl_->display, egl_->context);
-  }
-  if (egl_->display != EGL_NO_DISPLAY) eglTerminate(egl_->display);
+  // Its own objects, with its own context current (another may have been made current since).
+  make_current();
+  glDeleteRenderbuffers(1, &depth_);
+  glDeleteRenderbuffers(1, &colour_);
+  glDeleteFramebuffers(1, &framebuffer_);
+  eglMakeCurrent(egl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  eglDestroyContext(egl_->display, egl_->context);
+  const std::lock_guard<std::mutex> lock(live_mutex);
+  if (--live_contexts == 0) eglTerminate(egl_->display);
+}
+
+void OffscreenContext::make_current() {
+  if (eglGetCurrentContext() != egl_->context)
+    eglMakeCurrent(egl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, egl_->context);
 }
 
 void OffscreenContext::bind() {
+  make_current();
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width_, height_);
 }
@@ -83,6 +98,7 @@ void OffscreenContext::bind() {
 std::vector<std::uint8_t> OffscreenContext::read_rgb() {
   const std::size_t w = std::size_t(width_), h = std::size_t(height_);
   std::vector<std::uint8_t> raw(w * h * 3), out(w * h * 3);
+  make_current();
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, raw.data());
@@ -95,6 +111,7 @@ std::vector<std::uint8_t> OffscreenContext::read_rgb() {
 std::vector<float> OffscreenContext::read_depth() {
   const std::size_t w = std::size_t(width_), h = std::size_t(height_);
   std::vector<float> raw(w * h), out(w * h);
+  make_current();
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT, raw.data());

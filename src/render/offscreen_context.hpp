@@ -18,7 +18,8 @@ class OffscreenContext {
 
   int width() const { return width_; }
   int height() const { return height_; }
-  // Binds the framebuffer as the draw target (the renderer draws into whatever is bound).
+  // Makes this context current on the calling thread and binds its framebuffer as the draw
+  // target (the renderer draws into whatever is bound). Several contexts may live in a process.
   void bind();
   // The drawn image, RGB, rows from the top.
   std::vector<std::uint8_t> read_rgb();
@@ -28,6 +29,7 @@ class OffscreenContext {
   const char* renderer_name() const;
 
  private:
+  void make_current();
   struct Egl;
   std::unique_ptr<Egl> egl_;
   int width_, height_;
