@@ -45,6 +45,33 @@ TEST(InputStream, AStepsInputSurvivesTheTextExactly) {
   EXPECT_EQ(back[1].left.source, surgery::PoseSource::none);
 }
 
+TEST(InputStream, TheStepsOfALostDeviceAreMarkedAndReadBack) {
+  session::SessionInput in = sample_input();
+  const std::string plain = format_input_line(0, in);
+  EXPECT_EQ(plain.find("lost"), std::string::npos);  // streams without a loss read as before
+  in.right.device_lost = true;
+  const std::string right = format_input_line(1, in);
+  EXPECT_EQ(right.substr(right.size() - 11), " lost:right");
+  in.left.device_lost = true;
+  const std::string both = format_input_line(2, in);
+  const auto back = parse_input_stream(plain + "\n" + right + "\n" + both + "\n", "s.stream");
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_FALSE(back[0].left.device_lost || back[0].right.device_lost);
+  EXPECT_FALSE(back[1].left.device_lost);
+  EXPECT_TRUE(back[1].right.device_lost);
+  EXPECT_TRUE(back[2].left.device_lost && back[2].right.device_lost);
+  const std::string wrong = plain + " lost:feet";
+  try {
+    parse_input_stream(wrong, "bad.stream");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputStreamError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "bad.stream:1: unexpected fields after the camera's ('lost:feet'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 std::string error_of(const std::string& text) {
   try {
     parse_input_stream(text, "bad.stream");

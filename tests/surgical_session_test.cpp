@@ -268,5 +268,43 @@ TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {
   }
 }
 
+// A device lost mid-cut (issue 42): the instruments hold still and the cautery stops at the
+// step the input says so, whatever the lost device's last commands were, and both ends are
+// recorded as events; the device's return hands the instruments back.
+TEST(SurgicalSession, AnInstrumentWhoseDeviceIsLostHoldsStillWithNoEnergy) {
+  const surgery::InputScript script = surgery::load_input_script(kScript);
+  SurgicalSession s = make_surgical_session(scene::default_thorax_scene_params(), SessionParams{});
+  physics::Executor exec(1);
+  tissue::TissueWorld& w = s.scene.patch.world;
+  // Into the script's first cut (the pedal is pressed from 0.5 s).
+  while (w.state.time < 1.0)
+    ASSERT_TRUE(step_session(s, sample_script(script, w.state.time), exec).ok());
+  ASSERT_GT(s.fascia_edges_cut, 0u);
+  ASSERT_EQ(s.stations[1].pedal, surgery::PedalMode::cut);
+  const std::uint64_t cut_before = s.fascia_edges_cut;
+  const Real energy_before = s.cautery_energy;
+  const Pose hook = s.stations[1].device, forceps = s.stations[0].device;
+  // The script goes on cutting and moving both hands; its device is gone.
+  while (w.state.time < 1.5) {
+    SessionInput in = sample_script(script, w.state.time);
+    ASSERT_EQ(in.right.pedal, surgery::PedalMode::cut);
+    in.left.device_lost = in.right.device_lost = true;
+    ASSERT_TRUE(step_session(s, in, exec).ok());
+  }
+  EXPECT_EQ(s.fascia_edges_cut, cut_before);
+  EXPECT_EQ(s.cautery_energy, energy_before);
+  EXPECT_EQ(s.stations[1].pedal, surgery::PedalMode::off);
+  EXPECT_EQ(s.stations[1].device.translation, hook.translation);
+  EXPECT_EQ(s.stations[0].device.translation, forceps.translation);
+  EXPECT_EQ(s.events.count(surgery::EventKind::device_lost), 2u);
+  EXPECT_EQ(s.events.count(surgery::EventKind::cautery_off), 1u);
+  // Back: the script drives them again.
+  for (int n = 0; n < 20; ++n)
+    ASSERT_TRUE(step_session(s, sample_script(script, w.state.time), exec).ok());
+  EXPECT_EQ(s.events.count(surgery::EventKind::device_restored), 2u);
+  EXPECT_NE(s.stations[1].device.translation, hook.translation);
+  EXPECT_EQ(s.stations[1].pedal, surgery::PedalMode::cut);
+}
+
 }  // namespace
 }  // namespace imasim::session

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 #include <thread>
 
@@ -40,6 +41,16 @@ nlohmann::ordered_json loop_report(const haptics::HapticLoopStats& s) {
 }
 
 }  // namespace
+
+nlohmann::ordered_json loss_report(const console::LiveConsoleStats& stats) {
+  nlohmann::ordered_json lost;
+  constexpr const char* kNames[console::kParts] = {"left", "right", "pedal"};
+  for (std::size_t p = 0; p < console::kParts; ++p)
+    lost[kNames[p]] = {{"losses", stats.losses[p].losses},
+                       {"lost_s", stats.losses[p].lost_s},
+                       {"held_at_end", stats.losses[p].held}};
+  return lost;
+}
 
 std::vector<std::unique_ptr<devices::InputDevice>> make_live_devices(const LiveInputOptions& o,
                                                                      std::uint16_t& port) {
@@ -129,6 +140,16 @@ session::SessionInput LiveInputs::next(const session::SurgicalSession& s) {
 void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t steps_done,
                             double dt) {
   console_->publish(s, steps_done);
+  // A loss is said where the user looks as it happens, not only in the report at the end.
+  for (std::size_t k = 0; k < 2; ++k) {
+    const bool lost = s.stations[k].device_lost;
+    if (lost == told_lost_[k]) continue;
+    told_lost_[k] = lost;
+    std::fprintf(stderr, "imasim run: at %.3f s the %s's device %s\n",
+                 double(s.scene.patch.world.state.time), k == 0 ? "forceps" : "hook",
+                 lost ? "was lost: the instrument is held still, the cautery off"
+                      : "is back: the instrument follows it again");
+  }
   const double due = start_s_ + double(steps_done) * dt;
   const double wait = due - console_->now_s();
   if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
@@ -163,6 +184,7 @@ nlohmann::ordered_json LiveInputs::finish() {
                                          {"device_lost", c.device_lost}};
   }
   report_["safety"] = safety;
+  report_["lost"] = loss_report(st);
   return report_;
 }
 

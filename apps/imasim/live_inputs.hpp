@@ -11,6 +11,7 @@
 //   spacemouse   a 3D mouse through spacenavd (the right hand), real time;
 // any of the live ones with foot pedals from a joystick's buttons beside them (`--pedal`).
 #include <sys/types.h>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -46,6 +47,10 @@ struct LiveInputOptions {
 std::vector<std::unique_ptr<devices::InputDevice>> make_live_devices(const LiveInputOptions& o,
                                                                      std::uint16_t& port);
 
+// Per console part (left, right, pedal): how often its device was lost, for how long, and
+// whether it was still held at the end.
+nlohmann::ordered_json loss_report(const console::LiveConsoleStats& stats);
+
 // Starts `imasim device-emulator` (this very program) playing `script` to `port`; its summary
 // goes to /dev/null. Throws std::runtime_error when it cannot start.
 pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
@@ -72,6 +77,7 @@ class LiveInputs {
   pid_t emulator_ = -1;
   double start_s_ = -1;
   bool finished_ = false;
+  std::array<bool, 2> told_lost_{};  // per instrument: a loss said on stderr, not yet its end
   nlohmann::ordered_json report_;
 };
 

@@ -10,7 +10,8 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
         surgery::EventKind::cautery_off, surgery::EventKind::contact_begin,
         surgery::EventKind::contact_end, surgery::EventKind::injury,
         surgery::EventKind::cut_refused, surgery::EventKind::fragment_vaporised,
-        surgery::EventKind::strand_torn}) {
+        surgery::EventKind::strand_torn, surgery::EventKind::device_lost,
+        surgery::EventKind::device_restored}) {
     events[surgery::to_string(kind)] = s.events.count(kind);
   }
   out["events"] = events;

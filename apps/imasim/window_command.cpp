@@ -270,6 +270,7 @@ int run_window_command(const WindowCommandOptions& o) {
                           {"latency_p99_us", l.latency_p99_us},
                           {"realtime_priority", l.realtime},
                           {"force_max_n", loop->force_max_n}};
+    out["devices_lost"] = loss_report(*loop);
   }
   if (card) out["score"] = score_json(*card);
   if (!print_report(out, o.json)) {

@@ -15,6 +15,7 @@ surgery::InstrumentInput instrument_input(const devices::HandInput& hand,
     in.pose = hand.pose;
   }
   in.clutch = hand.clutch;
+  in.device_lost = hand.lost;
   if (!hand.has_buttons) return in;  // the jaws hold until the device says where they go
   const surgery::JawParams& jaws = station.instrument.jaws;
   const Real target = (1 - std::clamp(hand.jaw, Real(0), Real(1))) * jaws.max_angle;
@@ -46,6 +47,7 @@ session::SessionInput to_session_input(const devices::ConsoleInput& console,
   in.right = instrument_input(console.right, s.stations[1]);
   in.right.pedal = pedal_mode(console.pedal);
   in.right.power = console.power_w;
+  in.right.device_lost = in.right.device_lost || console.pedal_lost;
   return in;
 }
 

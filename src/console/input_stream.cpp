@@ -148,6 +148,11 @@ std::string format_input_line(std::uint64_t step, const session::SessionInput& i
     put(out, double(*in.camera.roll));
   else
     out += " -";
+  // Only on the steps of a lost device: streams of sessions without one read as before.
+  if (in.left.device_lost || in.right.device_lost)
+    out += in.left.device_lost && in.right.device_lost ? " lost:both"
+           : in.left.device_lost                       ? " lost:left"
+                                                       : " lost:right";
   return out;
 }
 
@@ -184,6 +189,14 @@ std::vector<session::SessionInput> parse_input_stream(std::string_view text,
     if (roll != "-") {
       Fields h(roll, path + ":" + std::to_string(line_number));
       in.camera.roll = Real(h.number("camera roll"));
+    }
+    if (!g.done()) {
+      const std::string lost = g.next("lost devices");
+      if (lost == "lost:left" || lost == "lost:both") in.left.device_lost = true;
+      if (lost == "lost:right" || lost == "lost:both") in.right.device_lost = true;
+      if (!in.left.device_lost && !in.right.device_lost)
+        g.fail("unexpected fields after the camera's ('" + lost +
+               "'; only lost:left, lost:right or lost:both may follow)");
     }
     if (!g.done()) g.fail("unexpected fields after the camera's");
     steps.push_back(in);

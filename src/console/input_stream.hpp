@@ -2,10 +2,11 @@
 // A recorded device stream (issue 13, "Determinism"): the session input of every step, as the
 // devices gave it, written exactly (hexadecimal floating point) so that replaying the file
 // through step_session reproduces the run's state hash bit for bit. Text, one line a step:
-//   <step> <left> <right> <camera>
+//   <step> <left> <right> <camera> [lost:left|lost:right|lost:both]
 //   instrument: <source none|hand|tool> <x y z> <r00 .. r22> <jaw -1|0|1> <clutch 0|1>
 //               <pedal off|cut|coag> <power W>
 //   camera: <optics rad> <insertion m or -> <roll rad or ->
+//   lost: the steps on which a hand's device (or the pedal's, for the right) was gone
 // Lines starting with '#' are comments. Reading checks everything up front and throws
 // InputStreamError ("PATH:LINE: message").
 #include <cstdio>

@@ -6,19 +6,31 @@
 
 namespace imasim::console {
 
+namespace {
+
+std::vector<std::array<bool, kParts>> drives_of(
+    const std::vector<std::unique_ptr<devices::InputDevice>>& list) {
+  std::vector<std::array<bool, kParts>> out;
+  for (const auto& d : list) {
+    const devices::DeviceInfo info = d->info();
+    out.push_back({info.drives_left, info.drives_right, info.drives_pedal});
+  }
+  return out;
+}
+
+}  // namespace
+
 LiveConsole::LiveConsole(std::vector<std::unique_ptr<devices::InputDevice>> devices,
                          const LiveConsoleParams& params)
     : params_(params),
       devices_(std::move(devices)),
+      drives_(drives_of(devices_)),
       t0_(std::chrono::steady_clock::now()),
+      connected_(devices_.size(), false),
+      guard_(drives_),
       tremor_{devices::TremorFilter(params.tremor), devices::TremorFilter(params.tremor)},
       safety_{haptics::ForceSafety(params.safety, 0.0), haptics::ForceSafety(params.safety, 0.0)},
-      loop_(params.loop, [this](double) { tick(now_s()); }) {
-  for (const auto& d : devices_) {
-    const devices::DeviceInfo info = d->info();
-    drives_.push_back({info.drives_left, info.drives_right});
-  }
-}
+      loop_(params.loop, [this](double) { tick(now_s()); }) {}
 
 LiveConsole::~LiveConsole() {
   stop();
@@ -54,13 +66,19 @@ void LiveConsole::publish_models(const std::array<haptics::LocalModel, 2>& model
 }
 
 void LiveConsole::tick(double now) {
-  for (const auto& d : devices_)
-    d->poll(now, raw_);
+  for (std::size_t k = 0; k < devices_.size(); ++k) {
+    devices_[k]->poll(now, raw_);
+    connected_[k] = devices_[k]->connected();
+  }
+  // A lost device's parts are released at this very tick (loss_guard.hpp).
+  const std::array<bool, 2> resumed =
+      guard_.apply(now, connected_, last_step_seen_, raw_, guarded_);
   // The physics sees the filtered hands; the force is rendered against them too (what the
   // instrument follows).
-  devices::ConsoleInput filtered = raw_;
+  devices::ConsoleInput filtered = guarded_;
   for (int h = 0; h < 2; ++h) {
     devices::HandInput& hand = filtered.hand(devices::Hand(h));
+    if (resumed[std::size_t(h)]) tremor_[h].reset();  // a returned device starts afresh
     if (hand.has_pose) hand.pose.translation = tremor_[h].filter(hand.pose.translation);
   }
   inputs_.publish(filtered);
@@ -77,9 +95,11 @@ void LiveConsole::tick(double now) {
     // Releasing the clutch brings hand and tool together again: the force ramps in anew.
     if (clutch_[h] && !hand.clutch) safety_[h].restart_ramp(now);
     clutch_[h] = hand.clutch;
+    // A held hand gets no force from this tick on, even once its device is back.
     bool device_ok = false;
     for (std::size_t k = 0; k < devices_.size(); ++k)
-      device_ok = device_ok || (drives_[k][std::size_t(h)] && devices_[k]->connected());
+      device_ok = device_ok || (drives_[k][std::size_t(h)] && connected_[k]);
+    device_ok = device_ok && !hand.lost;
     haptics::ForceChannels f;
     if (have_model && hand.has_pose && !hand.clutch) {
       const haptics::LocalModel& m = latest_[h];
@@ -100,6 +120,7 @@ LiveConsoleStats LiveConsole::stats() const {
   s.loop = loop_.stats();
   for (int h = 0; h < 2; ++h)
     s.safety[h] = safety_[h].counters();
+  s.losses = guard_.parts();
   return s;
 }
 

@@ -3,7 +3,8 @@
 // feed the physics through a lock-free latest value; each physics step publishes its local
 // models back the same way; the loop renders eq. 17-19 against the newest hand pose and sends
 // each hand's force through its safety filter. Neither side ever waits on the other.
-//   haptic thread: poll devices -> tremor filter -> publish ConsoleInput
+//   haptic thread: poll devices -> release what lost devices drove (LossGuard) -> tremor filter
+//                  -> publish ConsoleInput
 //                  read LocalModels -> force per hand -> ForceSafety -> devices
 //   physics thread: latest_input() -> step_session -> publish(session)
 #include <array>
@@ -12,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "console/loss_guard.hpp"
 #include "devices/input_device.hpp"
 #include "devices/tremor_filter.hpp"
 #include "haptics/force_safety.hpp"
@@ -35,6 +37,7 @@ struct LiveConsoleStats {
   std::uint64_t contacts = 0;     // contacts in the models the loop rendered, once per model
   std::uint64_t models_read = 0;  // distinct physics steps the loop rendered
   std::array<haptics::SafetyCounters, 2> safety{};
+  std::array<PartLoss, kParts> losses{};  // left hand, right hand, pedal
 };
 
 class LiveConsole {
@@ -68,13 +71,16 @@ class LiveConsole {
 
   LiveConsoleParams params_;
   std::vector<std::unique_ptr<devices::InputDevice>> devices_;
-  std::vector<std::array<bool, 2>> drives_;  // per device: left, right
+  std::vector<std::array<bool, kParts>> drives_;  // per device: left, right, pedal
   std::chrono::steady_clock::time_point t0_;
   haptics::LatestValue<devices::ConsoleInput> inputs_;
   haptics::LatestValue<Models> models_;
   devices::ConsoleInput physics_side_input_{};
   // Haptic thread only.
-  devices::ConsoleInput raw_{};
+  devices::ConsoleInput raw_{};      // as the devices wrote it
+  devices::ConsoleInput guarded_{};  // with what lost devices drove released
+  std::vector<bool> connected_;      // per device, this tick
+  LossGuard guard_;
   std::array<devices::TremorFilter, 2> tremor_;
   std::array<haptics::ForceSafety, 2> safety_;
   std::array<bool, 2> clutch_{false, false};

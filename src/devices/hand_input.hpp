@@ -23,12 +23,16 @@ struct HandInput {
   bool has_buttons = false;      // false until the first clutch and jaw values arrive
   bool clutch = false;           // true = engaged (the hand moves without the instrument)
   Real jaw = 0;                  // 0 open .. 1 closed
+  // Its device is gone: the console holds it (clutch engaged, still) until the device is back
+  // (console/loss_guard.hpp). Set by the console, never by a device.
+  bool lost = false;
 };
 
 struct ConsoleInput {
   HandInput left, right;
   haptics::CauteryMode pedal = haptics::CauteryMode::off;
-  Real power_w = 40;  // the generator's setting (unit: W)
+  Real power_w = 40;        // the generator's setting (unit: W)
+  bool pedal_lost = false;  // the pedal's device is gone: off until it is back (set by the console)
 
   HandInput& hand(Hand h) { return h == Hand::left ? left : right; }
 };

@@ -114,6 +114,10 @@ std::uint64_t IgtlCounters::refused_total() const {
 }
 
 IgtlDecoder::IgtlDecoder(IgtlNames names) : names_(std::move(names)) {
+  start_fresh();
+}
+
+void IgtlDecoder::start_fresh() {
   last_time_s_.fill(-std::numeric_limits<double>::infinity());
 }
 

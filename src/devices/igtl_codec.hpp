@@ -71,6 +71,10 @@ class IgtlDecoder {
   bool apply(const std::uint8_t* header, const std::uint8_t* body, std::size_t body_bytes,
              ConsoleInput& input);
 
+  // A new peer: its time stamps are its own clock's, so ordering starts afresh (a device that
+  // reconnects with its clock restarted is followed, not refused as out of order).
+  void start_fresh();
+
   const IgtlCounters& counters() const { return counters_; }
   const IgtlNames& names() const { return names_; }
 

@@ -100,6 +100,7 @@ int IgtlLink::poll(ConsoleInput& input) {
     if (fd >= 0) {
       make_non_blocking(fd);
       peer_ = fd;
+      decoder_.start_fresh();  // ordering is per connection
     }
   }
   if (peer_ < 0) return 0;

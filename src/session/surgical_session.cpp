@@ -37,6 +37,19 @@ Mat3 frame_along(const Vec3& f) {
   return r;
 }
 
+surgery::InstrumentInput held_if_lost(const surgery::InstrumentInput& given) {
+  surgery::InstrumentInput in = given;
+  if (!in.device_lost) return in;
+  // A hand pose moves nothing while clutched (the arm re-anchors when it returns); a tool pose
+  // is not followed.
+  in.clutch = true;
+  if (in.source == surgery::PoseSource::tool) in.source = surgery::PoseSource::none;
+  in.jaw = surgery::JawCommand::hold;
+  in.pedal = surgery::PedalMode::off;
+  in.power = 0;
+  return in;
+}
+
 void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput& in) {
   st.previous_pose = st.pose;
   st.previous_pose.translation += st.carried;  // where the last step's solve left the tool
@@ -220,9 +233,21 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   Stopwatch clock;
   physics::StepProfile profile;
 
+  // 0. An instrument whose device is gone holds still with no energy (the live console releases
+  // it already; a stream or a front end that did not is held here all the same).
+  const std::array<surgery::InstrumentInput, 2> in = {held_if_lost(input.left),
+                                                      held_if_lost(input.right)};
+  for (std::uint8_t k = 0; k < 2; ++k) {
+    Station& st = s.stations[k];
+    if (in[k].device_lost == st.device_lost) continue;
+    st.device_lost = in[k].device_lost;
+    s.events.add(time, st.device_lost ? EventKind::device_lost : EventKind::device_restored, k,
+                 Tissue::none);
+  }
+
   // 1. Instruments and camera.
-  update_pose(s, s.stations[0], input.left);
-  update_pose(s, s.stations[1], input.right);
+  update_pose(s, s.stations[0], in[0]);
+  update_pose(s, s.stations[1], in[1]);
   surgery::EndoscopeParams camera = s.params.endoscope;
   camera.optics_angle = input.camera.optics;
   if (input.camera.insertion) camera.insertion = *input.camera.insertion;
@@ -245,18 +270,18 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   // 3. Electrocautery.
   bool freed = held == 0 && held_before > 0;  // whether a piece of fascia may have come free
   Station& hook = s.stations[1];
-  const surgery::PedalMode pedal = input.right.pedal;
+  const surgery::PedalMode pedal = in[1].pedal;
   if (pedal != hook.pedal) {
     if (hook.pedal != surgery::PedalMode::off) {
       s.events.add(time, EventKind::cautery_off, 1, Tissue::none);
     }
     if (pedal != surgery::PedalMode::off) {
-      s.events.add(time, EventKind::cautery_on, 1, Tissue::none, 0, input.right.power);
+      s.events.add(time, EventKind::cautery_on, 1, Tissue::none, 0, in[1].power);
     }
     hook.pedal = pedal;
   }
   surgery::CauteryParams cautery = s.params.cautery;
-  cautery.power = input.right.power;
+  cautery.power = in[1].power;
   hook.power_w = pedal == surgery::PedalMode::off ? Real(0) : cautery.power;
   const std::array<Vec3, 2> e = electrode(s);
   const surgery::CauteryStep heat =

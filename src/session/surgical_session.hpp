@@ -84,6 +84,7 @@ struct Station {
   surgery::PedalMode pedal = surgery::PedalMode::off;
   Real power_w = 0;  // the cautery's power while the pedal is pressed (unit: W)
   surgery::PoseSource source = surgery::PoseSource::none;  // of the last pose given
+  bool device_lost = false;  // its device is gone: held still, no energy (SessionInput)
 };
 
 struct SurgicalSession {

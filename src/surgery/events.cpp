@@ -28,6 +28,10 @@ const char* to_string(EventKind kind) {
       return "fragment_vaporised";
     case EventKind::strand_torn:
       return "strand_torn";
+    case EventKind::device_lost:
+      return "device_lost";
+    case EventKind::device_restored:
+      return "device_restored";
   }
   return "unknown";
 }

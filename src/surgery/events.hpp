@@ -26,6 +26,9 @@ enum class EventKind : std::uint8_t {
                        // value = their rest area (unit: m^2)
   strand_torn,         // strands stretched past their tear_stretch; count = strands, value =
                        // the largest stretch (ends' distance over rest distance)
+  device_lost,         // the device driving the instrument (its hand or pedal) went away: it is
+                       // held still with no energy
+  device_restored,     // that device is back and drives the instrument again
 };
 
 enum class Tissue : std::uint8_t { none, fascia, ima, fat, heart, chest_wall };

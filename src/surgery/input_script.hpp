@@ -76,6 +76,9 @@ struct InstrumentInput {
   bool clutch = false;
   PedalMode pedal = PedalMode::off;
   Real power = 40;  // (unit: W)
+  // The device driving this instrument (its hand, or the cautery's pedal) is gone: the session
+  // holds the instrument still with no energy and records device_lost (console/loss_guard.hpp).
+  bool device_lost = false;
 };
 
 struct CameraInput {

@@ -21,6 +21,7 @@ struct HandNumbers {
   Real force_normal = 0, force_tangential = 0, force_thermal = 0;
   surgery::Tissue contact = surgery::Tissue::none;  // pressed the most
   bool blocked_by_heart = false, blocked_by_wall = false;
+  bool device_lost = false;  // its device is gone: held still, no energy
   // Per channel (normal, tangential, thermal), oldest first (unit: N).
   std::array<std::array<float, kForceHistory>, 3> history{};
 };
@@ -56,6 +57,7 @@ struct LiveNumbers {
   std::uint64_t strands_torn = 0;  // pulled apart, not divided (tissue/strand_tear.hpp)
   std::uint64_t ima_injuries = 0;  // injury events
   std::uint64_t grasps = 0;
+  std::uint64_t devices_lost = 0;  // device_lost events
   // contact_begin events per tissue (surgery::Tissue's order): touches of the heart, the IMA...
   std::array<std::uint64_t, surgery::kTissueCount> contacts_begun{};
   std::uint32_t instrument_collisions = 0;  // tips closer than 5 mm, counted once per approach

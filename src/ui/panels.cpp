@@ -79,6 +79,9 @@ void instruments_panel(const LiveNumbers& n) {
     const HandNumbers& h = n.hands[k];
     ImGui::Text("%s: jaws %.1f deg%s", kTools[k], degrees(h.jaw_angle_rad),
                 h.clutch ? "  CLUTCH" : "");
+    if (h.device_lost)
+      ImGui::TextColored(ImVec4(1.0f, 0.35f, 0.25f, 1.0f),
+                         "   DEVICE LOST: held still, cautery off until it is back");
     ImGui::Text("   touching %s%s%s", surgery::to_string(h.contact),
                 h.blocked_by_heart ? ", stopped by the heart" : "",
                 h.blocked_by_wall ? ", stopped by the wall" : "");
@@ -104,7 +107,8 @@ void forces_panel(const LiveNumbers& n) {
 
 void metrics_panel(const LiveNumbers& n) {
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
-  ImGui::Text("events %llu, grasps %llu", u(n.events), u(n.grasps));
+  ImGui::Text("events %llu, grasps %llu, devices lost %llu", u(n.events), u(n.grasps),
+              u(n.devices_lost));
   ImGui::Text("fascia edges cut %llu, strands cut %llu / %llu", u(n.fascia_edges_cut),
               u(n.strands_cut), u(n.strands_total));
   ImGui::Text("strands torn %llu", u(n.strands_torn));

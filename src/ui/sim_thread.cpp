@@ -246,6 +246,7 @@ void SimThread::publish(bool frame) {
       h.clutch = st.arm_state.clutched;
       h.blocked_by_heart = st.blocked_by_heart;
       h.blocked_by_wall = st.blocked_by_wall;
+      h.device_lost = st.device_lost;
       if (!score_->rows().empty()) {
         const metrics::ToolSample& t = score_->rows().back().tools[k];
         h.force_normal = t.force_normal;
@@ -275,6 +276,7 @@ void SimThread::publish(bool frame) {
       const surgery::Event& e = s.events.events[events_tallied_];
       n.ima_injuries += e.kind == surgery::EventKind::injury ? 1 : 0;
       n.grasps += e.kind == surgery::EventKind::grasp ? 1 : 0;
+      n.devices_lost += e.kind == surgery::EventKind::device_lost ? 1 : 0;
       if (e.kind == surgery::EventKind::contact_begin) ++n.contacts_begun[std::size_t(e.tissue)];
     }
     n.instrument_collisions = std::uint32_t(score_->instrument_collisions());
