@@ -33,7 +33,11 @@ struct AnatomyParams {
   // LV centre from the IMA's mid-course centre (unit: m): under the left IMA, in the cavity.
   Vec3 heart_offset = Vec3(Real(0.005), Real(-0.034), Real(0.015));
   Vec3 heart_tilt = Vec3::Zero();  // axis * angle applied to the heart's orientation (rad)
-  std::uint64_t patient_seed = 0;  // 0: this typical patient; else a varied one (see below)
+  // The cavity's floor under the field: the collapsed left lung and the pericardium beside the
+  // heart, as a horizontal plane this far below the lowest tissue at rest (about the default
+  // heart's centre: ours); tissue cut free rests on it instead of falling across the cavity.
+  Real cavity_floor_gap = Real(0.02);  // (unit: m)
+  std::uint64_t patient_seed = 0;      // 0: this typical patient; else a varied one (see below)
 };
 
 // A varied scalar parameter: its physiological range. Variation draws each one from a
@@ -65,6 +69,8 @@ struct ThoraxLayout {
   Vec3 heart_centre, heart_long_axis, heart_lateral;
   Vec3 ima_midpoint;
   Real wall_axis_y = 0;  // the cylinder axis: (sternum x, wall_axis_y, z)
+  // The floor plane y = cavity_floor_y, its normal +y (set with the tissue: make_thorax_scene).
+  Real cavity_floor_y = 0;
 };
 
 // `long_axis` and `lateral` are the heart's orientation before the tilt.

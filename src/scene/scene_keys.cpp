@@ -130,6 +130,10 @@ const SceneKey kKeys[] = {
      kHeartReach, "LV centre from the IMA's mid-course centre"},
     {"anatomy.heart_tilt_rad", Vec3Ref([](P& p) { return &p.anatomy.heart_tilt; }), -kTurn, kTurn,
      "axis * angle turning the heart's orientation"},
+    {"anatomy.cavity_floor_gap_m", RealRef([](P& p) { return &p.anatomy.cavity_floor_gap; }), 0.005,
+     0.3,
+     "the cavity's floor (collapsed lung, pericardium) below the lowest tissue at rest: freed "
+     "tissue rests on it"},
 
     {"solver.dt_s", RealRef([](P& p) { return &p.patch.solver.dt; }), 1e-5, 0.1,
      "step; the paper's 5 ms (2.3.1)"},

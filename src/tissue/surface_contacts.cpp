@@ -61,4 +61,21 @@ void gather_wall_contacts(const geometry::CylinderPatchSpec& wall, const physics
   }
 }
 
+void gather_floor_contacts(Real floor_y, const physics::Particles& P, Real dt,
+                           const SurfaceContactParams& params, physics::ContactSet& out) {
+  for (std::size_t k = 0; k < P.size(); ++k) {
+    if (P.inverse_mass[k] == 0) continue;
+    const Vec3 probe = P.position[k] + dt * P.velocity[k];
+    if (probe.y() - floor_y > params.search + dt * P.velocity[k].norm()) continue;
+    physics::ContactRow c;
+    c.particle = static_cast<std::uint32_t>(k);
+    c.tag = kFloorContact;
+    c.point0 = c.point1 = Vec3(probe.x(), floor_y, probe.z());
+    c.normal = Vec3::UnitY();
+    c.static_friction = params.floor_static_friction;
+    c.kinetic_friction = params.floor_kinetic_friction;
+    out.rows.push_back(c);
+  }
+}
+
 }  // namespace imasim::tissue

@@ -9,6 +9,8 @@
 //    velocity (friction acts on the relative motion).
 //  - Chest wall: the cavity's cylinder (the wall's inner surface) from inside: particles within
 //    `search` of it get the tangent plane, normal towards the axis; the wall does not move.
+//  - Cavity floor: the plane y = floor_y (the collapsed lung and the pericardium under the
+//    field), normal +y: particles within `search` of it from above get it; it does not move.
 #include <cstdint>
 
 #include "geometry/tube.hpp"
@@ -19,13 +21,15 @@
 namespace imasim::tissue {
 
 // Tags of the surfaces' contact rows.
-inline constexpr std::uint32_t kHeartContact = 1, kWallContact = 2;
+inline constexpr std::uint32_t kHeartContact = 1, kWallContact = 2, kFloorContact = 3;
 
 struct SurfaceContactParams {
   Real search = Real(0.002);  // beyond the predicted motion (unit: m)
   // The epicardium and the pleura are wet serous surfaces: low friction (ours).
   Real heart_static_friction = Real(0.1), heart_kinetic_friction = Real(0.05);
   Real wall_static_friction = Real(0.3), wall_kinetic_friction = Real(0.2);
+  // The lung's pleura and the pericardium are wet serous surfaces too (ours, as the heart's).
+  Real floor_static_friction = Real(0.1), floor_kinetic_friction = Real(0.05);
 };
 
 // Appends the heart's contacts (margin: heart.margin); heart.previous and heart.current are the
@@ -37,5 +41,9 @@ void gather_heart_contacts(HeartField& heart, const physics::Particles& particle
 void gather_wall_contacts(const geometry::CylinderPatchSpec& wall,
                           const physics::Particles& particles, Real dt,
                           const SurfaceContactParams& params, physics::ContactSet& out);
+
+// Appends the cavity floor's contacts (margin 0): the plane y = floor_y (unit: m), normal +y.
+void gather_floor_contacts(Real floor_y, const physics::Particles& particles, Real dt,
+                           const SurfaceContactParams& params, physics::ContactSet& out);
 
 }  // namespace imasim::tissue
