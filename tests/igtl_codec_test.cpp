@@ -145,6 +145,32 @@ TEST(IgtlCodec, MalformedTruncatedReplayedAndOversizedMessagesAreRefusedAndCount
   EXPECT_EQ(d.counters().refused_total(), 14u);
 }
 
+// Refusals are told apart by the sender's device name, so that a user can see that a tracker
+// called "Tracker" is not mapped to a hand; past the table's room they are counted as others.
+TEST(IgtlCodec, RefusalsAreCountedByDeviceNameAndReason) {
+  IgtlDecoder d;
+  ConsoleInput in;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_FALSE(apply(d, {encode_pose("Tracker", turned_pose(Vec3::Zero()), 1.0 + k)}, in));
+  EXPECT_FALSE(apply(d, {encode_pose("LeftHand", turned_pose(Vec3(NAN, 0, 0)), 1.0)}, in));
+  EXPECT_FALSE(apply(d, {std::vector<std::uint8_t>(kIgtlHeaderBytes + 4, 0xff)}, in));
+  const IgtlCounters& c = d.counters();
+  ASSERT_EQ(c.named, 3u);
+  EXPECT_STREQ(c.refused_names[0].name.data(), "Tracker");
+  EXPECT_EQ(c.refused_names[0].count, 3u);
+  EXPECT_STREQ(c.refused_names[1].name.data(), "LeftHand");
+  EXPECT_EQ(c.refused_names[1].count, 1u);
+  EXPECT_STREQ(c.refused_names[2].name.data(), "");  // no header to read a name from
+  EXPECT_EQ(c.reasons_seen(), (1u << unsigned(IgtlRefusal::unknown_device)) |
+                                  (1u << unsigned(IgtlRefusal::bad_values)) |
+                                  (1u << unsigned(IgtlRefusal::bad_header)));
+  for (std::size_t k = 0; k < kIgtlRefusedNames + 4; ++k)
+    apply(d, {encode_values("Stranger" + std::to_string(k), {1}, 1.0)}, in);
+  EXPECT_EQ(c.named, kIgtlRefusedNames);
+  EXPECT_EQ(c.refused_others, 7u);  // 20 new names, 13 places left
+  EXPECT_EQ(c.refused_total(), 25u);
+}
+
 // Messages the fuzzer found (fuzz/corpus/igtl_message/regression_*): a SENSOR body shorter than
 // its value count and a TRANSFORM whose header declares a short body made the library read past
 // them. Both are refused before the library reads them.

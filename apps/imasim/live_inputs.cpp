@@ -140,6 +140,17 @@ session::SessionInput LiveInputs::next(const session::SurgicalSession& s) {
 void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t steps_done,
                             double dt) {
   console_->publish(s, steps_done);
+  // A refusal is said once per reason as it first happens; every one is counted in the report.
+  const std::uint32_t refusals = console_->refusal_reasons_seen() & ~told_refusals_;
+  for (std::size_t r = 0; r < devices::kIgtlRefusals; ++r) {
+    if ((refusals & (std::uint32_t(1) << r)) == 0) continue;
+    std::fprintf(stderr,
+                 "imasim run: OpenIGTLink: a message was refused (%s: %s); each refusal is "
+                 "counted by reason and device name in the JSON's devices.refused\n",
+                 devices::igtl_refusal_name(devices::IgtlRefusal(r)),
+                 devices::igtl_refusal_meaning(devices::IgtlRefusal(r)));
+  }
+  told_refusals_ |= refusals;
   // A loss is said where the user looks as it happens, not only in the report at the end.
   for (std::size_t k = 0; k < 2; ++k) {
     const bool lost = s.stations[k].device_lost;
@@ -168,6 +179,23 @@ nlohmann::ordered_json LiveInputs::finish() {
     emulator_ = -1;
   }
   report_["connected_at_end"] = !info.empty() && info[0].connected;
+  if (!info.empty()) {
+    nlohmann::ordered_json refused, by_reason = nlohmann::ordered_json::object(),
+                                    by_name = nlohmann::ordered_json::object();
+    std::uint64_t total = 0;
+    for (const auto& [reason, n] : info[0].refused_by_reason) {
+      by_reason[reason] = n;
+      total += n;
+    }
+    for (const auto& [name, n] : info[0].refused_by_name)
+      by_name[name] = n;
+    refused["total"] = total;
+    refused["by_reason"] = by_reason;
+    refused["by_device"] = by_name;
+    report_["refused"] = refused;
+    report_["peers_seen"] = info[0].peers_seen;
+    report_["peers_dropped"] = info[0].peers_dropped;
+  }
   if (info.size() > 1 && info.back().kind == "pedal")
     report_["pedal_connected_at_end"] = info.back().connected;
   report_["haptic_loop"] = loop_report(st.loop);

@@ -78,6 +78,7 @@ class LiveInputs {
   double start_s_ = -1;
   bool finished_ = false;
   std::array<bool, 2> told_lost_{};  // per instrument: a loss said on stderr, not yet its end
+  std::uint32_t told_refusals_ = 0;  // refusal reasons said on stderr
   nlohmann::ordered_json report_;
 };
 

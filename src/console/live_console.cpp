@@ -66,10 +66,14 @@ void LiveConsole::publish_models(const std::array<haptics::LocalModel, 2>& model
 }
 
 void LiveConsole::tick(double now) {
+  std::uint32_t refusals = 0;
   for (std::size_t k = 0; k < devices_.size(); ++k) {
     devices_[k]->poll(now, raw_);
     connected_[k] = devices_[k]->connected();
+    refusals |= devices_[k]->refusal_reasons();
   }
+  if ((refusals & ~refusals_seen_.load(std::memory_order_relaxed)) != 0)
+    refusals_seen_.fetch_or(refusals, std::memory_order_relaxed);
   // A lost device's parts are released at this very tick (loss_guard.hpp).
   const std::array<bool, 2> resumed =
       guard_.apply(now, connected_, last_step_seen_, raw_, guarded_);

@@ -62,6 +62,11 @@ class LiveConsole {
 
   // After stop(): the loop's figures and what the safety filters did.
   LiveConsoleStats stats() const;
+  // Any thread: the refusal reasons the devices have reported so far (bit r: reason r in the
+  // devices' own numbering, OpenIGTLink's IgtlRefusal today), so that each can be said once.
+  std::uint32_t refusal_reasons_seen() const {
+    return refusals_seen_.load(std::memory_order_relaxed);
+  }
   // The devices' descriptions (any thread while stopped; the loop owns them while running).
   std::vector<devices::DeviceInfo> device_info() const;
 
@@ -87,6 +92,7 @@ class LiveConsole {
   Models latest_{};
   std::uint64_t last_step_seen_ = 0;
   LiveConsoleStats stats_;
+  std::atomic<std::uint32_t> refusals_seen_{0};
   haptics::HapticLoop loop_;
 };
 

@@ -86,6 +86,26 @@ std::optional<std::vector<double>> sensor_values(const igtl::MessageHeader::Poin
 
 }  // namespace
 
+const char* igtl_refusal_meaning(IgtlRefusal r) {
+  switch (r) {
+    case IgtlRefusal::bad_header:
+      return "not an OpenIGTLink version 1 or 2 header; the peer is dropped";
+    case IgtlRefusal::oversized:
+      return "a body larger than imasim reads; the peer is dropped";
+    case IgtlRefusal::unknown_type:
+      return "a message type imasim does not read (TRANSFORM and SENSOR only)";
+    case IgtlRefusal::unknown_device:
+      return "a device name the scene's [devices] mapping does not name";
+    case IgtlRefusal::bad_body:
+      return "a CRC mismatch or a body its type cannot unpack";
+    case IgtlRefusal::bad_values:
+      return "non-finite values, a rotation that is not one, or values out of range";
+    case IgtlRefusal::out_of_order:
+      return "a time stamp not later than the device's previous one";
+  }
+  return "?";
+}
+
 const char* igtl_refusal_name(IgtlRefusal r) {
   switch (r) {
     case IgtlRefusal::bad_header:
@@ -106,6 +126,13 @@ const char* igtl_refusal_name(IgtlRefusal r) {
   return "?";
 }
 
+std::uint32_t IgtlCounters::reasons_seen() const {
+  std::uint32_t bits = 0;
+  for (std::size_t r = 0; r < refused.size(); ++r)
+    bits |= refused[r] > 0 ? std::uint32_t(1) << r : 0u;
+  return bits;
+}
+
 std::uint64_t IgtlCounters::refused_total() const {
   std::uint64_t n = 0;
   for (const std::uint64_t r : refused)
@@ -121,21 +148,37 @@ void IgtlDecoder::start_fresh() {
   last_time_s_.fill(-std::numeric_limits<double>::infinity());
 }
 
-bool IgtlDecoder::refuse(IgtlRefusal r) {
+bool IgtlDecoder::refuse(IgtlRefusal r, std::string_view device) {
   ++counters_.refused[std::size_t(r)];
+  device = device.substr(0, 20);
+  IgtlCounters& c = counters_;
+  for (std::size_t k = 0; k < c.named; ++k) {
+    if (std::string_view(c.refused_names[k].name.data()) == device) {
+      ++c.refused_names[k].count;
+      return false;
+    }
+  }
+  if (c.named == c.refused_names.size()) {
+    ++c.refused_others;
+    return false;
+  }
+  IgtlNameRefusals& entry = c.refused_names[c.named++];
+  device.copy(entry.name.data(), device.size());
+  entry.name[device.size()] = '\0';
+  entry.count = 1;
   return false;
 }
 
 std::optional<IgtlHeader> IgtlDecoder::read_header(const std::uint8_t* bytes) {
   const igtl::MessageHeader::Pointer h = unpack_header(bytes);
   if (!h) {
-    refuse(IgtlRefusal::bad_header);
+    refuse(IgtlRefusal::bad_header, {});
     return std::nullopt;
   }
   // The version field: the first two bytes, big-endian.
   const unsigned version = (unsigned(bytes[0]) << 8) | bytes[1];
   if (version != 1 && version != 2) {
-    refuse(IgtlRefusal::bad_header);
+    refuse(IgtlRefusal::bad_header, h->GetDeviceName());
     return std::nullopt;
   }
   IgtlHeader out;
@@ -144,7 +187,7 @@ std::optional<IgtlHeader> IgtlDecoder::read_header(const std::uint8_t* bytes) {
   out.body_bytes = std::uint64_t(h->GetBodySizeToRead());
   out.time_s = stamp_seconds(*h);
   if (out.body_bytes > kIgtlMaxBodyBytes) {
-    refuse(IgtlRefusal::oversized);
+    refuse(IgtlRefusal::oversized, out.device);
     return std::nullopt;
   }
   return out;
@@ -175,7 +218,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
                         std::size_t body_bytes, ConsoleInput& input) {
   const std::optional<IgtlHeader> head = read_header(header);
   if (!head) return false;
-  if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body);
+  if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body, head->device);
   const igtl::MessageHeader::Pointer h = unpack_header(header);
   const std::string& device = head->device;
   const bool tool = device == names_.left_tool || device == names_.right_tool;
@@ -183,17 +226,19 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
   const bool buttons = device == names_.left_buttons || device == names_.right_buttons;
   const bool pedal = device == names_.pedal;
   if (head->type == "TRANSFORM") {
-    if (!pose) return refuse(IgtlRefusal::unknown_device);
+    if (!pose) return refuse(IgtlRefusal::unknown_device, head->device);
     // Twelve 4-byte floats. Checked before the library reads it: it sizes its buffer by the
     // header and reads 48 bytes whatever the header said (found by fuzzing,
     // fuzz/corpus/igtl_message/regression_transform_size).
-    if (body_bytes != kTransformBodyBytes) return refuse(IgtlRefusal::bad_body);
+    if (body_bytes != kTransformBodyBytes) return refuse(IgtlRefusal::bad_body, head->device);
     igtl::TransformMessage::Pointer m = igtl::TransformMessage::New();
     m->SetMessageHeader(h);
     m->AllocatePack();
-    if (std::size_t(m->GetPackBodySize()) != body_bytes) return refuse(IgtlRefusal::bad_body);
+    if (std::size_t(m->GetPackBodySize()) != body_bytes)
+      return refuse(IgtlRefusal::bad_body, head->device);
     std::memcpy(m->GetPackBodyPointer(), body, body_bytes);
-    if (!(m->Unpack(1) & igtl::MessageHeader::UNPACK_BODY)) return refuse(IgtlRefusal::bad_body);
+    if (!(m->Unpack(1) & igtl::MessageHeader::UNPACK_BODY))
+      return refuse(IgtlRefusal::bad_body, head->device);
     igtl::Matrix4x4 t;
     m->GetMatrix(t);
     Mat3 r;
@@ -206,9 +251,10 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
     if (!r.allFinite() || !p.allFinite() || p.cwiseAbs().maxCoeff() > kMaxHandPosition ||
         !((r.transpose() * r - Mat3::Identity()).cwiseAbs().maxCoeff() < kRotationTolerance) ||
         !(r.determinant() > 0)) {
-      return refuse(IgtlRefusal::bad_values);
+      return refuse(IgtlRefusal::bad_values, head->device);
     }
-    if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
+    if (!later_than_last(device, head->time_s))
+      return refuse(IgtlRefusal::out_of_order, head->device);
     const bool left = device == names_.left_pose || device == names_.left_tool;
     HandInput& hand = input.hand(left ? Hand::left : Hand::right);
     const PoseFrame frame = tool ? PoseFrame::tool : PoseFrame::hand;
@@ -226,16 +272,17 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
     return true;
   }
   if (head->type == "SENSOR") {
-    if (!buttons && !pedal) return refuse(IgtlRefusal::unknown_device);
+    if (!buttons && !pedal) return refuse(IgtlRefusal::unknown_device, head->device);
     const std::optional<std::vector<double>> values = sensor_values(h, body, body_bytes);
-    if (!values) return refuse(IgtlRefusal::bad_body);
+    if (!values) return refuse(IgtlRefusal::bad_body, head->device);
     const std::vector<double>& v = *values;
     for (const double x : v)
-      if (!std::isfinite(x)) return refuse(IgtlRefusal::bad_values);
+      if (!std::isfinite(x)) return refuse(IgtlRefusal::bad_values, head->device);
     if (buttons) {
       if (v.size() != 2 || (v[0] != 0 && v[0] != 1) || v[1] < 0 || v[1] > 1)
-        return refuse(IgtlRefusal::bad_values);
-      if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
+        return refuse(IgtlRefusal::bad_values, head->device);
+      if (!later_than_last(device, head->time_s))
+        return refuse(IgtlRefusal::out_of_order, head->device);
       HandInput& hand = input.hand(device == names_.left_buttons ? Hand::left : Hand::right);
       hand.has_buttons = true;
       hand.clutch = v[0] == 1;
@@ -243,15 +290,16 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
     } else {
       if (v.empty() || v.size() > 2 || (v[0] != 0 && v[0] != 1 && v[0] != 2) ||
           (v.size() == 2 && !(v[1] >= 0 && v[1] <= kMaxPowerW)))
-        return refuse(IgtlRefusal::bad_values);
-      if (!later_than_last(device, head->time_s)) return refuse(IgtlRefusal::out_of_order);
+        return refuse(IgtlRefusal::bad_values, head->device);
+      if (!later_than_last(device, head->time_s))
+        return refuse(IgtlRefusal::out_of_order, head->device);
       input.pedal = static_cast<haptics::CauteryMode>(int(v[0]));
       if (v.size() == 2) input.power_w = Real(v[1]);
     }
     ++counters_.accepted;
     return true;
   }
-  return refuse(IgtlRefusal::unknown_type);
+  return refuse(IgtlRefusal::unknown_type, head->device);
 }
 
 std::optional<std::vector<double>> decode_sensor(const std::uint8_t* header,

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "devices/hand_input.hpp"
@@ -45,11 +46,26 @@ enum class IgtlRefusal : std::uint8_t {
 };
 inline constexpr std::size_t kIgtlRefusals = 7;
 const char* igtl_refusal_name(IgtlRefusal r);
+const char* igtl_refusal_meaning(IgtlRefusal r);  // one line for a user
+
+// Refusals of one device name (the header's, at most 20 characters; "" when the header could not
+// be read).
+struct IgtlNameRefusals {
+  std::array<char, 21> name{};
+  std::uint64_t count = 0;
+};
+inline constexpr std::size_t kIgtlRefusedNames = 16;  // names told apart; the rest are "others"
 
 struct IgtlCounters {
   std::uint64_t accepted = 0;
   std::array<std::uint64_t, kIgtlRefusals> refused{};
+  // By device name, in the order first refused (no allocation in the loop).
+  std::array<IgtlNameRefusals, kIgtlRefusedNames> refused_names{};
+  std::size_t named = 0;             // entries of refused_names in use
+  std::uint64_t refused_others = 0;  // refusals of names past the table's room
   std::uint64_t refused_total() const;
+  // Bit r set: refusal reason r seen at least once.
+  std::uint32_t reasons_seen() const;
 };
 
 // A header's fields, once checked.
@@ -79,7 +95,7 @@ class IgtlDecoder {
   const IgtlNames& names() const { return names_; }
 
  private:
-  bool refuse(IgtlRefusal r);
+  bool refuse(IgtlRefusal r, std::string_view device);
   bool later_than_last(const std::string& device, double time_s);
 
   IgtlNames names_;

@@ -2,6 +2,18 @@
 
 namespace imasim::devices {
 
+namespace {
+
+// A device name as a report can show it: printable ASCII ('?' for any other byte).
+std::string printable_name(const char* name) {
+  std::string out(name);
+  for (char& c : out)
+    if (c < 0x20 || c > 0x7e) c = '?';
+  return out.empty() ? std::string("(no name)") : out;
+}
+
+}  // namespace
+
 IgtlDevice::IgtlDevice(const IgtlDeviceConfig& config) : config_(config), link_(config.link) {}
 
 void IgtlDevice::poll(double, ConsoleInput& input) {
@@ -29,6 +41,17 @@ DeviceInfo IgtlDevice::info() const {
   d.max_force_n = config_.max_force_n;
   d.workspace_m = config_.workspace_m;
   d.drives_left = d.drives_right = d.drives_pedal = true;
+  const IgtlCounters& counted = link_.counters();
+  for (std::size_t r = 0; r < kIgtlRefusals; ++r)
+    if (counted.refused[r] > 0)
+      d.refused_by_reason.emplace_back(igtl_refusal_name(IgtlRefusal(r)), counted.refused[r]);
+  for (std::size_t k = 0; k < counted.named; ++k)
+    d.refused_by_name.emplace_back(printable_name(counted.refused_names[k].name.data()),
+                                   counted.refused_names[k].count);
+  if (counted.refused_others > 0)
+    d.refused_by_name.emplace_back("(other names)", counted.refused_others);
+  d.peers_seen = link_.peers_seen();
+  d.peers_dropped = link_.peers_dropped();
   return d;
 }
 

@@ -21,6 +21,8 @@ class IgtlDevice final : public InputDevice {
   void send_force(Hand hand, const Vec3& force_n, double now_s) override;
   bool connected() const override { return link_.connected(); }
   DeviceInfo info() const override;
+  // Bit r: IgtlRefusal r.
+  std::uint32_t refusal_reasons() const override { return link_.counters().reasons_seen(); }
   const IgtlLink& link() const { return link_; }
 
  private:

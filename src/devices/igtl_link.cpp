@@ -78,6 +78,7 @@ IgtlLink::IgtlLink(const IgtlLinkConfig& config) : config_(config), decoder_(con
     port_ = config.port;
     make_non_blocking(fd);
     peer_ = fd;
+    ++peers_seen_;
   }
   buffer_.reserve(kIgtlHeaderBytes + kIgtlMaxBodyBytes);
 }
@@ -100,6 +101,7 @@ int IgtlLink::poll(ConsoleInput& input) {
     if (fd >= 0) {
       make_non_blocking(fd);
       peer_ = fd;
+      ++peers_seen_;
       decoder_.start_fresh();  // ordering is per connection
     }
   }

@@ -48,6 +48,7 @@ class IgtlLink {
   std::uint16_t port() const { return port_; }  // the port listened on (server)
   const IgtlCounters& counters() const { return decoder_.counters(); }
   std::uint64_t peers_dropped() const { return peers_dropped_; }
+  std::uint64_t peers_seen() const { return peers_seen_; }  // connections made, all told
 
  private:
   void drop_peer();
@@ -57,7 +58,7 @@ class IgtlLink {
   int listener_ = -1, peer_ = -1;
   std::uint16_t port_ = 0;
   std::vector<std::uint8_t> buffer_;
-  std::uint64_t peers_dropped_ = 0;
+  std::uint64_t peers_dropped_ = 0, peers_seen_ = 0;
 };
 
 // Whether `address` (dotted IPv4) is a loopback address (127.0.0.0/8).

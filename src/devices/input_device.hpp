@@ -3,7 +3,10 @@
 // OpenIGTLink, gamepads, 3D mice, scripted playback. A device drives part of the console (one
 // hand, both, the pedals): poll() writes what it owns into the ConsoleInput and leaves the rest.
 // All calls come from one thread (the 1 kHz loop's) and never block.
+#include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "devices/hand_input.hpp"
 
@@ -18,6 +21,10 @@ struct DeviceInfo {
   Real max_force_n = 0;             // the largest force it can render (unit: N)
   Vec3 workspace_m = Vec3::Zero();  // extent of the hand's reach per axis (unit: m)
   bool drives_left = false, drives_right = false, drives_pedal = false;
+  // What it refused (a protocol's messages): counts by reason and by the sender's device name,
+  // and the peers it has had; empty for devices that refuse nothing.
+  std::vector<std::pair<std::string, std::uint64_t>> refused_by_reason, refused_by_name;
+  std::uint64_t peers_seen = 0, peers_dropped = 0;
 };
 
 class InputDevice {
@@ -31,6 +38,8 @@ class InputDevice {
   // Whether it answers now (cheap: called every tick).
   virtual bool connected() const = 0;
   virtual DeviceInfo info() const = 0;  // (allocates: not for every tick)
+  // Bit r: refusal reason r (the device's own numbering) seen at least once (cheap: every tick).
+  virtual std::uint32_t refusal_reasons() const { return 0; }
 };
 
 }  // namespace imasim::devices
