@@ -145,6 +145,30 @@ TEST(IgtlCodec, MalformedTruncatedReplayedAndOversizedMessagesAreRefusedAndCount
   EXPECT_EQ(d.counters().refused_total(), 14u);
 }
 
+// A tracker that stamps no time (the protocol's unused stamp is 0, and common tracking servers
+// send it): every pose is followed in the order it arrives, timed by its arrival, none refused
+// as out of order after the first (the instrument froze).
+TEST(IgtlCodec, UnstampedMessagesAreTakenInArrivalOrderAndTimedOnArrival) {
+  IgtlDecoder d;
+  ConsoleInput in;
+  for (int k = 0; k < 5; ++k) {
+    const Message m{encode_pose("LeftHand", turned_pose(Vec3(0.001 * k, 0, 0)), 0.0)};
+    ASSERT_TRUE(d.apply(m.header(), m.body(), m.body_bytes(), in, 1.0 + 0.01 * k)) << k;
+    const Message b{encode_values("LeftButtons", {0, 0.1 * k}, 0.0)};
+    ASSERT_TRUE(d.apply(b.header(), b.body(), b.body_bytes(), in, 1.0 + 0.01 * k)) << k;
+  }
+  EXPECT_NEAR(in.left.pose.translation.x(), 0.004, 1e-6);
+  EXPECT_NEAR(in.left.velocity.x(), 0.1, 1e-3);  // 1 mm per 10 ms of arrival
+  EXPECT_DOUBLE_EQ(in.left.time_s, 1.04);
+  EXPECT_NEAR(in.left.jaw, 0.4, 1e-9);
+  EXPECT_EQ(d.counters().refused_total(), 0u);
+  // A stamped sender on the same decoder keeps its order check.
+  const Message late{encode_pose("RightHand", turned_pose(Vec3::Zero()), 5.0)};
+  EXPECT_TRUE(d.apply(late.header(), late.body(), late.body_bytes(), in, 2.0));
+  EXPECT_FALSE(d.apply(late.header(), late.body(), late.body_bytes(), in, 2.1));
+  EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::out_of_order)], 1u);
+}
+
 // Refusals are told apart by the sender's device name, so that a user can see that a tracker
 // called "Tracker" is not mapped to a hand; past the table's room they are counted as others.
 TEST(IgtlCodec, RefusalsAreCountedByDeviceNameAndReason) {

@@ -271,6 +271,7 @@ int run_window_command(const WindowCommandOptions& o) {
                           {"realtime_priority", l.realtime},
                           {"force_max_n", loop->force_max_n}};
     out["devices_lost"] = loss_report(*loop);
+    out["devices_refused"] = loop->refused;
   }
   if (card) out["score"] = score_json(*card);
   if (!print_report(out, o.json)) {

@@ -67,11 +67,14 @@ void LiveConsole::publish_models(const std::array<haptics::LocalModel, 2>& model
 
 void LiveConsole::tick(double now) {
   std::uint32_t refusals = 0;
+  std::uint64_t refused = 0;
   for (std::size_t k = 0; k < devices_.size(); ++k) {
     devices_[k]->poll(now, raw_);
     connected_[k] = devices_[k]->connected();
     refusals |= devices_[k]->refusal_reasons();
+    refused += devices_[k]->refused_total();
   }
+  refused_total_.store(refused, std::memory_order_relaxed);
   if ((refusals & ~refusals_seen_.load(std::memory_order_relaxed)) != 0)
     refusals_seen_.fetch_or(refusals, std::memory_order_relaxed);
   // A lost device's parts are released at this very tick (loss_guard.hpp).
@@ -125,6 +128,7 @@ LiveConsoleStats LiveConsole::stats() const {
   for (int h = 0; h < 2; ++h)
     s.safety[h] = safety_[h].counters();
   s.losses = guard_.parts();
+  s.refused = refused_total();
   return s;
 }
 

@@ -38,6 +38,7 @@ struct LiveConsoleStats {
   std::uint64_t models_read = 0;  // distinct physics steps the loop rendered
   std::array<haptics::SafetyCounters, 2> safety{};
   std::array<PartLoss, kParts> losses{};  // left hand, right hand, pedal
+  std::uint64_t refused = 0;              // messages the devices refused
 };
 
 class LiveConsole {
@@ -67,6 +68,8 @@ class LiveConsole {
   std::uint32_t refusal_reasons_seen() const {
     return refusals_seen_.load(std::memory_order_relaxed);
   }
+  // Any thread: the messages the devices refused so far, all told.
+  std::uint64_t refused_total() const { return refused_total_.load(std::memory_order_relaxed); }
   // The devices' descriptions (any thread while stopped; the loop owns them while running).
   std::vector<devices::DeviceInfo> device_info() const;
 
@@ -93,6 +96,7 @@ class LiveConsole {
   std::uint64_t last_step_seen_ = 0;
   LiveConsoleStats stats_;
   std::atomic<std::uint32_t> refusals_seen_{0};
+  std::atomic<std::uint64_t> refused_total_{0};
   haptics::HapticLoop loop_;
 };
 

@@ -215,9 +215,13 @@ bool IgtlDecoder::later_than_last(const std::string& device, double time_s) {
 }
 
 bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
-                        std::size_t body_bytes, ConsoleInput& input) {
+                        std::size_t body_bytes, ConsoleInput& input, double arrival_s) {
   const std::optional<IgtlHeader> head = read_header(header);
   if (!head) return false;
+  // An unused stamp is 0 (the protocol): such messages come in TCP's order, timed on arrival.
+  const bool unstamped = head->time_s == 0;
+  const double time_s = unstamped ? arrival_s : head->time_s;
+  auto in_order = [&] { return unstamped || later_than_last(head->device, head->time_s); };
   if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body, head->device);
   const igtl::MessageHeader::Pointer h = unpack_header(header);
   const std::string& device = head->device;
@@ -253,20 +257,19 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
         !(r.determinant() > 0)) {
       return refuse(IgtlRefusal::bad_values, head->device);
     }
-    if (!later_than_last(device, head->time_s))
-      return refuse(IgtlRefusal::out_of_order, head->device);
+    if (!in_order()) return refuse(IgtlRefusal::out_of_order, head->device);
     const bool left = device == names_.left_pose || device == names_.left_tool;
     HandInput& hand = input.hand(left ? Hand::left : Hand::right);
     const PoseFrame frame = tool ? PoseFrame::tool : PoseFrame::hand;
-    if (hand.has_pose && hand.frame == frame && head->time_s > hand.time_s) {
-      hand.velocity = (p - hand.pose.translation) / Real(head->time_s - hand.time_s);
+    if (hand.has_pose && hand.frame == frame && time_s > hand.time_s) {
+      hand.velocity = (p - hand.pose.translation) / Real(time_s - hand.time_s);
     }
     // Re-orthonormalised: the wire's floats leave a rotation up to the tolerance off, and what
     // reaches the physics (and a recorded stream) is an exact one.
     hand.pose.rotation = Eigen::Quaternion<Real>(r).normalized().toRotationMatrix();
     hand.pose.translation = p;
     hand.frame = frame;
-    hand.time_s = head->time_s;
+    hand.time_s = time_s;
     hand.has_pose = true;
     ++counters_.accepted;
     return true;
@@ -281,8 +284,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
     if (buttons) {
       if (v.size() != 2 || (v[0] != 0 && v[0] != 1) || v[1] < 0 || v[1] > 1)
         return refuse(IgtlRefusal::bad_values, head->device);
-      if (!later_than_last(device, head->time_s))
-        return refuse(IgtlRefusal::out_of_order, head->device);
+      if (!in_order()) return refuse(IgtlRefusal::out_of_order, head->device);
       HandInput& hand = input.hand(device == names_.left_buttons ? Hand::left : Hand::right);
       hand.has_buttons = true;
       hand.clutch = v[0] == 1;
@@ -291,8 +293,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
       if (v.empty() || v.size() > 2 || (v[0] != 0 && v[0] != 1 && v[0] != 2) ||
           (v.size() == 2 && !(v[1] >= 0 && v[1] <= kMaxPowerW)))
         return refuse(IgtlRefusal::bad_values, head->device);
-      if (!later_than_last(device, head->time_s))
-        return refuse(IgtlRefusal::out_of_order, head->device);
+      if (!in_order()) return refuse(IgtlRefusal::out_of_order, head->device);
       input.pedal = static_cast<haptics::CauteryMode>(int(v[0]));
       if (v.size() == 2) input.power_w = Real(v[1]);
     }

@@ -9,7 +9,8 @@
 //   out: SENSOR "<hand> force": [Fx, Fy, Fz] in newtons, in the scene frame.
 // Every message is checked before use: its header, its CRC, a body no larger than the type
 // needs, a known type and device name, finite values, a rotation that is one, a time stamp
-// later than the device's previous one (a replayed or reordered message is refused). A refused
+// later than the device's previous one on this connection (a replayed or reordered message is
+// refused; a stamp of 0 is no stamp: the message is timed by its arrival). A refused
 // message changes nothing and is counted by reason.
 #include <array>
 #include <cstddef>
@@ -84,8 +85,11 @@ class IgtlDecoder {
   std::optional<IgtlHeader> read_header(const std::uint8_t* bytes);
 
   // Applies a whole message (header and body) to `input`; false (and counted) when refused.
+  // `arrival_s`: when it arrived (the loop's clock, unit: s). A time stamp of 0 means unstamped
+  // (the protocol's unused stamp, which common trackers send): such a message is taken in the
+  // order it arrives and timed by its arrival.
   bool apply(const std::uint8_t* header, const std::uint8_t* body, std::size_t body_bytes,
-             ConsoleInput& input);
+             ConsoleInput& input, double arrival_s = 0);
 
   // A new peer: its time stamps are its own clock's, so ordering starts afresh (a device that
   // reconnects with its clock restarted is followed, not refused as out of order).

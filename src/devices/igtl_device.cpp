@@ -16,8 +16,8 @@ std::string printable_name(const char* name) {
 
 IgtlDevice::IgtlDevice(const IgtlDeviceConfig& config) : config_(config), link_(config.link) {}
 
-void IgtlDevice::poll(double, ConsoleInput& input) {
-  link_.poll(input);
+void IgtlDevice::poll(double now_s, ConsoleInput& input) {
+  link_.poll(input, now_s);
 }
 
 void IgtlDevice::send_force(Hand hand, const Vec3& force_n, double now_s) {

@@ -23,6 +23,7 @@ class IgtlDevice final : public InputDevice {
   DeviceInfo info() const override;
   // Bit r: IgtlRefusal r.
   std::uint32_t refusal_reasons() const override { return link_.counters().reasons_seen(); }
+  std::uint64_t refused_total() const override { return link_.counters().refused_total(); }
   const IgtlLink& link() const { return link_; }
 
  private:

@@ -95,7 +95,7 @@ void IgtlLink::drop_peer() {
   ++peers_dropped_;
 }
 
-int IgtlLink::poll(ConsoleInput& input) {
+int IgtlLink::poll(ConsoleInput& input, double now_s) {
   if (peer_ < 0 && listener_ >= 0) {
     const int fd = ::accept4(listener_, nullptr, nullptr, SOCK_CLOEXEC);
     if (fd >= 0) {
@@ -131,7 +131,7 @@ int IgtlLink::poll(ConsoleInput& input) {
       const std::size_t whole = kIgtlHeaderBytes + std::size_t(h->body_bytes);
       if (buffer_.size() - at < whole) break;
       if (decoder_.apply(buffer_.data() + at, buffer_.data() + at + kIgtlHeaderBytes,
-                         std::size_t(h->body_bytes), input)) {
+                         std::size_t(h->body_bytes), input, now_s)) {
         ++accepted;
       }
       at += whole;

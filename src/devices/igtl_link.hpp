@@ -38,8 +38,9 @@ class IgtlLink {
   IgtlLink& operator=(const IgtlLink&) = delete;
 
   // Accepts a waiting peer (server), reads what has arrived and applies each whole message to
-  // `input`. Never blocks. Returns the messages accepted.
-  int poll(ConsoleInput& input);
+  // `input`, unstamped ones timed `now_s` (the loop's clock). Never blocks. Returns the messages
+  // accepted.
+  int poll(ConsoleInput& input, double now_s = 0);
 
   // Sends the force on one hand; false when no peer is connected or the peer is gone.
   bool send_force(Hand hand, const Vec3& force_n, double time_s);

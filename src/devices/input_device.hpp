@@ -38,8 +38,10 @@ class InputDevice {
   // Whether it answers now (cheap: called every tick).
   virtual bool connected() const = 0;
   virtual DeviceInfo info() const = 0;  // (allocates: not for every tick)
-  // Bit r: refusal reason r (the device's own numbering) seen at least once (cheap: every tick).
+  // Bit r: refusal reason r (the device's own numbering) seen at least once, and how many it
+  // refused in all (cheap: every tick).
   virtual std::uint32_t refusal_reasons() const { return 0; }
+  virtual std::uint64_t refused_total() const { return 0; }
 };
 
 }  // namespace imasim::devices

@@ -26,6 +26,8 @@ class InputSource {
   virtual void stop() = 0;
   // After stop(): the live console's figures (its 1 kHz loop's timing), when there is one.
   virtual std::optional<console::LiveConsoleStats> console_stats() const { return {}; }
+  // Any thread: the device messages refused so far (0 without a live console).
+  virtual std::uint64_t refused_total() const { return 0; }
 };
 
 class ScriptInput final : public InputSource {
@@ -54,6 +56,7 @@ class ConsoleInputSource final : public InputSource {
   std::optional<console::LiveConsoleStats> console_stats() const override {
     return console_.stats();
   }
+  std::uint64_t refused_total() const override { return console_.refused_total(); }
 
  private:
   KeyboardMouseDevice* keyboard_;

@@ -57,7 +57,8 @@ struct LiveNumbers {
   std::uint64_t strands_torn = 0;  // pulled apart, not divided (tissue/strand_tear.hpp)
   std::uint64_t ima_injuries = 0;  // injury events
   std::uint64_t grasps = 0;
-  std::uint64_t devices_lost = 0;  // device_lost events
+  std::uint64_t devices_lost = 0;     // device_lost events
+  std::uint64_t device_refusals = 0;  // device messages refused (run's devices.refused)
   // contact_begin events per tissue (surgery::Tissue's order): touches of the heart, the IMA...
   std::array<std::uint64_t, surgery::kTissueCount> contacts_begun{};
   std::uint32_t instrument_collisions = 0;  // tips closer than 5 mm, counted once per approach

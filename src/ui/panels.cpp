@@ -109,6 +109,10 @@ void metrics_panel(const LiveNumbers& n) {
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   ImGui::Text("events %llu, grasps %llu, devices lost %llu", u(n.events), u(n.grasps),
               u(n.devices_lost));
+  if (n.device_refusals > 0)
+    ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.25f, 1.0f),
+                       "device messages refused %llu (by reason and name in the JSON)",
+                       u(n.device_refusals));
   ImGui::Text("fascia edges cut %llu, strands cut %llu / %llu", u(n.fascia_edges_cut),
               u(n.strands_cut), u(n.strands_total));
   ImGui::Text("strands torn %llu", u(n.strands_torn));

@@ -265,6 +265,7 @@ void SimThread::publish(bool frame) {
       }
     }
     n.pedal = s.stations[1].pedal;
+    n.device_refusals = input_->refused_total();
     n.events = s.events.events.size();
     n.fascia_edges_cut = s.fascia_edges_cut;
     n.strands_cut = s.strands_cut;
