@@ -30,7 +30,12 @@ LiveConsole::LiveConsole(std::vector<std::unique_ptr<devices::InputDevice>> devi
       guard_(drives_),
       tremor_{devices::TremorFilter(params.tremor), devices::TremorFilter(params.tremor)},
       safety_{haptics::ForceSafety(params.safety, 0.0), haptics::ForceSafety(params.safety, 0.0)},
-      loop_(params.loop, [this](double) { tick(now_s()); }) {}
+      loop_(params.loop, [this](double) { tick(now_s()); }) {
+  loop_.at_thread_exit([this] {
+    for (const auto& d : devices_)
+      d->polling_thread_ending();
+  });
+}
 
 LiveConsole::~LiveConsole() {
   stop();

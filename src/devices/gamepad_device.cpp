@@ -92,6 +92,10 @@ void GamepadDevice::send_force(Hand hand, const Vec3& force_n, double now_s) {
   SDL_GameControllerRumble(c, strength, strength, 40);
 }
 
+void GamepadDevice::polling_thread_ending() {
+  SDL_TLSCleanup();  // SDL frees it only for threads it made itself
+}
+
 DeviceInfo GamepadDevice::info() const {
   DeviceInfo d;
   d.kind = "gamepad";

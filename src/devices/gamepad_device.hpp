@@ -25,6 +25,7 @@ class GamepadDevice final : public InputDevice {
   void send_force(Hand hand, const Vec3& force_n, double now_s) override;
   bool connected() const override { return controller_ != nullptr; }
   DeviceInfo info() const override;
+  void polling_thread_ending() override;  // SDL's thread-local state of that thread
 
   // The names of the game controllers SDL sees now (for `imasim devices`).
   static std::vector<std::string> list_controllers();

@@ -42,6 +42,9 @@ class InputDevice {
   // refused in all (cheap: every tick).
   virtual std::uint32_t refusal_reasons() const { return 0; }
   virtual std::uint64_t refused_total() const { return 0; }
+  // On the polling thread as it ends: a device whose library keeps thread-local state there
+  // (SDL's error strings) frees it.
+  virtual void polling_thread_ending() {}
 };
 
 }  // namespace imasim::devices

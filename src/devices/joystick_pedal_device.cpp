@@ -76,6 +76,10 @@ void JoystickPedalDevice::poll(double, ConsoleInput& input) {
   apply_pedals(mapping_, held_, input);
 }
 
+void JoystickPedalDevice::polling_thread_ending() {
+  SDL_TLSCleanup();  // SDL frees it only for threads it made itself
+}
+
 DeviceInfo JoystickPedalDevice::info() const {
   DeviceInfo d;
   d.kind = "pedal";

@@ -24,6 +24,7 @@ class JoystickPedalDevice final : public InputDevice {
   void send_force(Hand, const Vec3&, double) override {}  // no actuators
   bool connected() const override { return joystick_ != nullptr; }
   DeviceInfo info() const override;
+  void polling_thread_ending() override;  // SDL's thread-local state of that thread
 
  private:
   void open_matching();

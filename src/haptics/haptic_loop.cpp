@@ -81,6 +81,7 @@ void HapticLoop::run() {
     }
   }
   elapsed_s_ = seconds_between(start, Clock::now());
+  if (at_exit_) at_exit_();
 }
 
 HapticLoopStats HapticLoop::stats() const {

@@ -44,6 +44,10 @@ class HapticLoop {
   HapticLoop(const HapticLoop&) = delete;
   HapticLoop& operator=(const HapticLoop&) = delete;
 
+  // Called on the loop's own thread as it ends (before start): what the tick's callees keep per
+  // thread there (a library's thread-local state) is freed on the thread that owns it.
+  void at_thread_exit(std::function<void()> done) { at_exit_ = std::move(done); }
+
   void start();
   void stop();  // joins the thread; safe to call twice
   bool running() const { return running_.load(); }
@@ -58,6 +62,7 @@ class HapticLoop {
 
   HapticLoopConfig config_;
   std::function<void(double)> tick_;
+  std::function<void()> at_exit_;
   std::atomic<bool> stop_{false}, running_{false};
   std::thread thread_;
   DurationHistogram period_, period_error_, latency_;
