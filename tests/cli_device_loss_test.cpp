@@ -2,11 +2,7 @@
 // "Safe on loss"): from the step the loss is seen the hook cuts no more and both instruments hold
 // still; the run says so on stderr, counts it in its JSON and records it in its input stream,
 // whose replay gives the same state.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -23,20 +19,6 @@ std::string err_file(const std::string& stem) {
   return imasim::test::test_err_file(::testing::TempDir(), stem);
 }
 
-// A loopback port free now (the kernel's pick for a socket bound to port 0).
-std::uint16_t free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = 0;
-  ::inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-  ::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a);
-  socklen_t length = sizeof a;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
-  ::close(fd);
-  return ntohs(a.sin_port);
-}
-
 std::vector<std::string> fields_of(const std::string& line) {
   std::istringstream in(line);
   std::vector<std::string> out;
@@ -49,7 +31,7 @@ TEST(RunDeviceLoss, AnEmulatorExitingMidCutLeavesTheHookHeldWithThePedalOff) {
   const std::string exe = IMASIM_EXE;
   const std::string script = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fascia.script";
   const std::string stream = ::testing::TempDir() + "imasim_device_loss.stream";
-  const std::string port = std::to_string(free_port());
+  const std::string port = std::to_string(imasim::test::free_loopback_port());
   const std::string run_err = err_file("imasim_loss_run");
   // The emulator plays 1.5 s of the script, in the middle of its first cut (pedal down from
   // 0.5 s to 4.1 s), and exits; the run goes on to 3 s.

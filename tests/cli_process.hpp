@@ -1,11 +1,16 @@
 #pragma once
 // Running `imasim` as a user does, for the command-line suites: a shell command whose stdout is
 // captured and whose stderr goes to a file, kept apart.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -69,6 +74,20 @@ inline Finished run_shell(const std::string& command, const std::string& err_pat
   if (WIFSIGNALED(status)) f.signal = WTERMSIG(status);
   f.err = read_file(err_path);
   return f;
+}
+
+// A loopback port free now (the kernel's pick for a socket bound to port 0), for a run and a
+// device emulator started apart that must meet on it.
+inline std::uint16_t free_loopback_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  ::inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+  ::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a);
+  socklen_t length = sizeof a;
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
+  ::close(fd);
+  return ntohs(a.sin_port);
 }
 
 #ifdef IMASIM_EXE

@@ -1,11 +1,7 @@
 // What `imasim run` refuses from its OpenIGTLink peers is said, not swallowed (issue 42, "Nothing
 // refused in silence"): a tracker sending under a name the scene does not map has every pose
 // refused; stderr says so once, the JSON counts it by reason and by device name.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -19,25 +15,13 @@ std::string err_file(const std::string& stem) {
   return imasim::test::test_err_file(::testing::TempDir(), stem);
 }
 
-std::uint16_t free_port() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  ::inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
-  ::bind(fd, reinterpret_cast<const sockaddr*>(&a), sizeof a);
-  socklen_t length = sizeof a;
-  ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &length);
-  ::close(fd);
-  return ntohs(a.sin_port);
-}
-
 TEST(RunRefusals, AnUnmappedTrackerIsCountedByNameAndSaidOnceOnStderr) {
   const std::string exe = IMASIM_EXE;
   const std::string script = std::string(IMASIM_SOURCE_DIR) + "/examples/open_fascia.script";
   // The emulator's console calls its left hand "Tracker"; the run maps the default names.
   const std::string scene = ::testing::TempDir() + "imasim_tracker.toml";
   std::ofstream(scene) << "[devices]\nleft_hand = \"Tracker\"\n";
-  const std::string port = std::to_string(free_port());
+  const std::string port = std::to_string(imasim::test::free_loopback_port());
   const std::string run_err = err_file("imasim_refusals_run");
   const imasim::test::Finished f = imasim::test::run_shell(
       exe + " run --headless --devices openigtlink --igtl-port " + port +

@@ -35,8 +35,8 @@ int run_haptics_bench_command(const HapticsBenchOptions& o) {
   lo.devices = "emulator";
   lo.script_file = o.script_file;
   lo.port = 0;
-  lo.seconds = o.seconds + 1;
   lo.loop_script = true;
+  lo.program = "imasim haptics-bench";
   std::unique_ptr<LiveInputs> live;
   try {
     live = std::make_unique<LiveInputs>(lo);

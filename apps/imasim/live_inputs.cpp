@@ -40,6 +40,10 @@ nlohmann::ordered_json loop_report(const haptics::HapticLoopStats& s) {
   return j;
 }
 
+// A child emulator's play time when it plays until finish() stops it (unit: s): the longest
+// device-emulator plays.
+constexpr double kUntilStopped = 3600;
+
 }  // namespace
 
 nlohmann::ordered_json loss_report(const console::LiveConsoleStats& stats) {
@@ -113,7 +117,7 @@ pid_t spawn_emulator(const std::string& script, const std::string& scene, std::u
   return pid;
 }
 
-LiveInputs::LiveInputs(const LiveInputOptions& o) {
+LiveInputs::LiveInputs(const LiveInputOptions& o) : program_(o.program) {
   std::uint16_t port = 0;
   std::vector<std::unique_ptr<devices::InputDevice>> list = make_live_devices(o, port);
   console::LiveConsoleParams params = console::live_console_params(o.settings);
@@ -124,7 +128,8 @@ LiveInputs::LiveInputs(const LiveInputOptions& o) {
   report_["link"] = console_->device_info()[0].name;
   if (o.pedal) report_["pedal"] = console_->device_info().back().name;
   if (o.devices == "emulator")
-    emulator_ = spawn_emulator(o.script_file, o.scene_file, port, o.seconds, o.loop_script);
+    emulator_ = spawn_emulator(o.script_file, o.scene_file, port,
+                               o.seconds > 0 ? o.seconds : kUntilStopped, o.loop_script);
   console_->start();
 }
 
@@ -145,9 +150,9 @@ void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t ste
   for (std::size_t r = 0; r < devices::kIgtlRefusals; ++r) {
     if ((refusals & (std::uint32_t(1) << r)) == 0) continue;
     std::fprintf(stderr,
-                 "imasim run: OpenIGTLink: a message was refused (%s: %s); each refusal is "
+                 "%s: OpenIGTLink: a message was refused (%s: %s); each refusal is "
                  "counted by reason and device name in the JSON's devices.refused\n",
-                 devices::igtl_refusal_name(devices::IgtlRefusal(r)),
+                 program_.c_str(), devices::igtl_refusal_name(devices::IgtlRefusal(r)),
                  devices::igtl_refusal_meaning(devices::IgtlRefusal(r)));
   }
   told_refusals_ |= refusals;
@@ -156,7 +161,7 @@ void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t ste
     const bool lost = s.stations[k].device_lost;
     if (lost == told_lost_[k]) continue;
     told_lost_[k] = lost;
-    std::fprintf(stderr, "imasim run: at %.3f s the %s's device %s\n",
+    std::fprintf(stderr, "%s: at %.3f s the %s's device %s\n", program_.c_str(),
                  double(s.scene.patch.world.state.time), k == 0 ? "forceps" : "hook",
                  lost ? "was lost: the instrument is held still, the cautery off"
                       : "is back: the instrument follows it again");

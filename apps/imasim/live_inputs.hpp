@@ -35,9 +35,12 @@ struct LiveInputOptions {
   std::optional<std::uint16_t> port;   // overrides its port; 0: any free (the emulator is told)
   bool client = false;                 // call a tracker's server instead of listening
   bool pedal = false;                  // add foot pedals from a joystick (settings' mapping)
-  double seconds = 0;                  // the emulator plays this long
-  bool loop_script = false;            // the emulator plays the script over and over
+  // The emulator plays this long; 0: until finish() stops it (a run that falls behind real time
+  // must not see its own emulator leave as a lost device).
+  double seconds = 0;
+  bool loop_script = false;  // the emulator plays the script over and over
   bool realtime_priority = true;
+  std::string program = "imasim run";  // names the program in its stderr lines
 };
 
 // The devices a live input starts (the hands' device, then the pedals with `pedal`), for
@@ -79,6 +82,7 @@ class LiveInputs {
   bool finished_ = false;
   std::array<bool, 2> told_lost_{};  // per instrument: a loss said on stderr, not yet its end
   std::uint32_t told_refusals_ = 0;  // refusal reasons said on stderr
+  std::string program_;
   nlohmann::ordered_json report_;
 };
 

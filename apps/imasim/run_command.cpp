@@ -371,7 +371,6 @@ int run_run_command(const RunOptions& o) {
     if (devices == "emulator" && !o.igtl_port) lo.port = 0;  // any free port, told to the child
     lo.client = o.igtl_client;
     lo.pedal = o.pedal;
-    lo.seconds = seconds + 1;
     try {
       live_inputs = std::make_unique<LiveInputs>(lo);
     } catch (const std::exception& e) {
