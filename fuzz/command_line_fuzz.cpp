@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "console/press_probe.hpp"
 #include "fuzz_check.hpp"
 #include "metrics/trainee_name.hpp"
 
@@ -82,6 +83,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                           "heatmap --density-max accepted out of range");
     imasim::fuzz::require(h.width >= 480 && h.width <= 8000 && h.height >= 360 && h.height <= 8000,
                           "heatmap --width or --height accepted out of range");
+  }
+  if (app.got_subcommand("press")) {
+    const imasim::cli::PressOptions& p = *commands.press;
+    for (const double mm : p.depths_mm)
+      imasim::fuzz::require(std::isfinite(mm) && mm >= 0.01 && mm <= 15,
+                            "press --depth-mm accepted out of range");
+    imasim::fuzz::require(imasim::console::press_tissue_named(p.tissue).has_value(),
+                          "press --tissue accepted an unknown tissue");
   }
   return 0;
 }

@@ -15,6 +15,7 @@ Commands add_commands(CLI::App& app) {
   c.sai = add_sai_command(app);
   c.heatmap = add_heatmap_command(app);
   c.history = add_history_command(app);
+  c.press = add_press_command(app);
   c.experiment = add_experiment_command(app);
   c.demo = add_demo_command(app);
   c.render = add_render_command(app);
@@ -33,6 +34,7 @@ int run_chosen_command(const CLI::App& app, const Commands& c) {
   if (app.got_subcommand("sai")) return run_sai_command(*c.sai);
   if (app.got_subcommand("heatmap")) return run_heatmap_command(*c.heatmap);
   if (app.got_subcommand("history")) return run_history_command(*c.history);
+  if (app.got_subcommand("press")) return run_press_command(*c.press);
   if (app.got_subcommand("experiment")) return run_experiment_command(*c.experiment);
   if (app.got_subcommand("demo")) return run_demo_command(*c.demo);
   if (app.got_subcommand("render")) return run_render_command(*c.render);

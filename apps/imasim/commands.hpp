@@ -12,6 +12,7 @@
 #include "haptics_bench_command.hpp"
 #include "heatmap_command.hpp"
 #include "history_command.hpp"
+#include "press_command.hpp"
 #include "render_command.hpp"
 #include "run_command.hpp"
 #include "sai_command.hpp"
@@ -32,6 +33,7 @@ struct Commands {
   std::shared_ptr<SaiOptions> sai;
   std::shared_ptr<HeatmapOptions> heatmap;
   std::shared_ptr<HistoryOptions> history;
+  std::shared_ptr<PressOptions> press;
   std::shared_ptr<ExperimentOptions> experiment;
   std::shared_ptr<DemoOptions> demo;
   std::shared_ptr<RenderOptions> render;

@@ -25,18 +25,6 @@ const scene::Port& find_port(const std::vector<scene::Port>& ports, const std::s
   throw std::invalid_argument("surgical session: the scene has no '" + name + "' port");
 }
 
-// A rotation whose f axis (third column) is `f`: l = R (1, 0, 0) across, n = f x l.
-Mat3 frame_along(const Vec3& f) {
-  Vec3 l = Vec3::UnitZ().cross(f);
-  if (l.norm() < Real(1e-6)) l = Vec3::UnitX().cross(f);
-  l.normalize();
-  Mat3 r;
-  r.col(0) = l;
-  r.col(1) = f.cross(l);
-  r.col(2) = f;
-  return r;
-}
-
 surgery::InstrumentInput held_if_lost(const surgery::InstrumentInput& given) {
   surgery::InstrumentInput in = given;
   if (!in.device_lost) return in;
@@ -200,7 +188,7 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
     const Vec3 target = scene_params.port_target;
     Pose start;
     start.translation = port.position + params.start_fraction * (target - port.position);
-    start.rotation = frame_along((target - port.position).normalized());
+    start.rotation = surgery::frame_along((target - port.position).normalized());
     st.arm_state = surgery::make_arm_state(st.arm, start, Pose{});
     st.state.controller = st.device = st.arm_state.tool;
     st.state.jaw_angle = 0;

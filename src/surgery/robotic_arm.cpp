@@ -5,6 +5,17 @@
 
 namespace imasim::surgery {
 
+Mat3 frame_along(const Vec3& f) {
+  Vec3 l = Vec3::UnitZ().cross(f);
+  if (l.norm() < Real(1e-6)) l = Vec3::UnitX().cross(f);
+  l.normalize();
+  Mat3 r;
+  r.col(0) = l;
+  r.col(1) = f.cross(l);
+  r.col(2) = f;
+  return r;
+}
+
 Pose constrain_to_port(const ArmParams& a, const Pose& commanded) {
   Pose out = commanded;
   Vec3 along = commanded.translation - a.port;

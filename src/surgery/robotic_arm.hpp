@@ -40,6 +40,10 @@ void update_arm(const ArmParams& params, const Pose& hand, bool clutch, ArmState
 // rotation that brings its f axis within the wrist limit of the shaft.
 Pose constrain_to_port(const ArmParams& params, const Pose& commanded);
 
+// A rotation whose f axis (third column) is the unit `f`: l = R (1, 0, 0) across (z x f, or x x f
+// when f is along z), n = f x l.
+Mat3 frame_along(const Vec3& f);
+
 // Unit shaft direction, from the port towards the hinge.
 Vec3 shaft_direction(const ArmParams& params, const ArmState& state);
 
