@@ -130,4 +130,32 @@ TEST(SaiCommand, BadFilesAreNamedWithTheirLine) {
   EXPECT_NE(radius.err.find("--radius"), std::string::npos) << radius.err;
 }
 
+// Each of these scored and exited 0: a header-only trajectory as 0.0, coordinates of 1e308 as
+// null, a heart of collinear points with a sign. Now each is an error that says why.
+TEST(SaiCommand, NonsenseIsRefusedNotScored) {
+  const std::string line = kDir + "imasim_sai_line3.csv", heart = kDir + "imasim_sai_heart3.obj",
+                    good = kDir + "imasim_sai_good3.csv";
+  write(line, "x,y,z\n0,0,0\n0,0,0.1\n");
+  write(heart, "v -0.02 -0.5 -0.5\nv -0.02 0.5 -0.5\nv -0.02 0.5 0.5\nf 1 2 3\n");
+  write(good, "t,x,y,z\n0,0.001,0,0.01\n");
+  auto refused = [&](const std::string& trajectory, const std::string& heart_file,
+                     const std::string& expected) {
+    const Finished f =
+        run("sai --trajectory " + trajectory + " --centerline " + line + " --heart " + heart_file);
+    EXPECT_EQ(f.exit_code, 2) << f.out;
+    EXPECT_NE(f.err.find(expected), std::string::npos) << f.err;
+    EXPECT_EQ(f.out, "");
+  };
+  const std::string empty = kDir + "imasim_sai_empty.csv", huge = kDir + "imasim_sai_huge.csv";
+  write(empty, "t,x,y,z\n");
+  refused(empty, heart, empty + ": the trajectory has no samples (a header only)");
+  write(huge, "t,x,y,z\n0,1e308,1e308,1e308\n0.1,-1e308,1e308,1e308\n");
+  refused(huge, heart, "trajectory sample 1 is inf m from the centerline, more than 10 m");
+  const std::string flat = kDir + "imasim_sai_flat.obj", millimetres = kDir + "imasim_sai_mm.obj";
+  write(flat, "v -0.02 0 0\nv -0.03 0 0\nv -0.04 0 0\nf 1 2 3\n");
+  refused(good, flat, "the heart surface is degenerate: none of its 1 triangles has an area");
+  write(millimetres, "v -20 -500 -500\nv -20 500 -500\nv -20 500 500\nf 1 2 3\n");
+  refused(good, millimetres, "the heart surface's area is 5e+05 m^2, not a heart's");
+}
+
 }  // namespace

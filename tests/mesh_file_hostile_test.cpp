@@ -123,6 +123,37 @@ TEST(MeshFileHostile, PlyCountsAreCheckedAgainstTheFileSize) {
   expect_refused(dir / "endless.ply", "PLY header: no end_header in the first 64 KiB");
 }
 
+// Assimp reads an ASCII PLY's int properties into 32 bits unchecked: 4294967297 was read as 1, a
+// vertex in range, and the file loaded. Numbers with ten or more digits before their point are
+// refused before it reads them; long fractions, exponents and leading zeros are numbers as usual.
+TEST(MeshFileHostile, PlyNumbersTooLongForAnyCoordinateOrIndexAreRefused) {
+  const test::TestFolder dir;
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty int x\nproperty int y\nproperty int z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  test::write_text(dir / "wraps.ply", header + "0 0 0\n4294967297 0 0\n0 10 0\n0 0 10\n" + faces);
+  expect_refused(dir / "wraps.ply",
+                 "PLY line 11: a number with more than 9 digits before its point (4294967297...), "
+                 "beyond any coordinate or index of a mesh (integer properties that long overflow "
+                 "as they are read)");
+  test::write_text(
+      dir / "index.ply",
+      header + "0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 -12345678901234567890\n" + faces.substr(8));
+  expect_refused(dir / "index.ply",
+                 "PLY line 14: a number with more than 9 digits before its point (1234567890...), "
+                 "beyond any coordinate or index of a mesh (integer properties that long overflow "
+                 "as they are read)");
+  std::string floats = header;
+  for (const char* axis : {"x", "y", "z"})
+    floats.replace(floats.find(std::string("int ") + axis), 4 + 1, std::string("float ") + axis);
+  test::write_text(dir / "fine.ply", floats +
+                                         "0.0000000000000000001 0 0\n10.12345678901234567890 0 "
+                                         "0\n0 1.0e+1 0\n0 0 00000000010\n" +
+                                         faces);
+  EXPECT_EQ(load_mesh_file(dir / "fine.ply").vertices.size(), 4u);
+}
+
 TEST(MeshFileHostile, ObjLinesAndCoordinatesAreBounded) {
   const test::TestFolder dir;
   test::write_text(dir / "long.obj", tetrahedron_with("v 10 0 0 " + std::string(1 << 20, '9')));

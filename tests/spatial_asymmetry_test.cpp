@@ -119,6 +119,31 @@ TEST(SpatialAsymmetry, BadInputIsRefused) {
   EXPECT_THROW(spatial_asymmetry(r, tips), SaiError);
   EXPECT_THROW(spatial_asymmetry(r, {}, 0), SaiError);
   EXPECT_EQ(spatial_asymmetry(r, {}).samples, 0u);
+  // Beyond a chest: a sample 20 m away, a centerline 20 m long (millimetres read as metres).
+  EXPECT_THROW(spatial_asymmetry(r, std::vector<Vec3>{Vec3(20, 0, 0)}), SaiError);
+  EXPECT_NO_THROW(spatial_asymmetry(r, std::vector<Vec3>{Vec3(5, 0, 0)}));
+  const std::vector<Vec3> long_line = {Vec3(0, 0, 0), Vec3(0, 0, 20)};
+  EXPECT_THROW(make_side_reference(long_line, plane_at_x(-0.02, 20)), SaiError);
+}
+
+// A heart that is not one: every triangle without area, or of an area no heart has in metres.
+// A degenerate triangle beside good ones is left out of the nearest-point search.
+TEST(SpatialAsymmetry, DegenerateOrMisScaledHeartsAreRefused) {
+  const std::vector<Vec3> c = {Vec3(0, 0, 0), Vec3(0, 0, 0.1)};
+  geometry::TriangleMesh collinear;
+  collinear.vertices = {Vec3(-0.02, 0, 0), Vec3(-0.03, 0, 0), Vec3(-0.04, 0, 0)};
+  collinear.triangles = {{0, 1, 2}};
+  EXPECT_THROW(make_side_reference(c, collinear), SaiError);
+  EXPECT_THROW(make_side_reference(c, plane_at_x(-0.02, 0.0004)), SaiError);  // 0.64 mm^2
+  EXPECT_THROW(make_side_reference(c, plane_at_x(-20, 500)), SaiError);       // 10^6 m^2
+  // A sliver nearer the vessel, on the other side, with no area: the plane still gives the side.
+  geometry::TriangleMesh with_sliver = plane_at_x(-0.02, 0.5);
+  const auto base = std::uint32_t(with_sliver.vertices.size());
+  with_sliver.vertices.insert(with_sliver.vertices.end(),
+                              {Vec3(0.001, 0, 0), Vec3(0.001, 0, 0.05), Vec3(0.001, 0, 0.1)});
+  with_sliver.triangles.push_back({base, base + 1, base + 2});
+  const SideReference r = make_side_reference(c, with_sliver);
+  EXPECT_EQ(side_distance(r, Vec3(-0.001, 0, 0.05)).side, -1);  // toward the plane: the heart
 }
 
 }  // namespace

@@ -43,6 +43,13 @@ int run_sai_command(const SaiOptions& o) {
   metrics::SaiResult r;
   try {
     const metrics::PointSeries tips = metrics::load_trajectory_csv(o.trajectory, o.tool);
+    // Eq. 20 is a mean over the samples: of none it is undefined, not 0.
+    if (tips.points.empty()) {
+      std::cerr << "imasim sai: " << o.trajectory
+                << ": the trajectory has no samples (a header only): eq. 20's mean of nothing is "
+                   "no score\n";
+      return 2;
+    }
     const metrics::PointSeries centerline = metrics::load_centerline_csv(o.centerline);
     scene::MeshLoadOptions mesh;
     mesh.transform.scale = Real(o.heart_scale);

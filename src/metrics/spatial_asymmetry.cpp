@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "geometry/closest_point.hpp"
@@ -25,10 +26,51 @@ Vec3 tangent_at(std::span<const Vec3> c, std::size_t k) {
   return t.norm() > 0 ? Vec3(t.normalized()) : after;
 }
 
+// Three significant digits, for messages.
+std::string number_text(Real v) {
+  std::ostringstream out;
+  out.precision(3);
+  out << v;
+  return out.str();
+}
+
+Real triangle_area(const geometry::TriangleMesh& m, const geometry::Triangle& t) {
+  const Vec3& a = m.vertices[t[0]];
+  return Real(0.5) * (m.vertices[t[1]] - a).cross(m.vertices[t[2]] - a).norm();
+}
+
+// A triangle below a square micrometre has no direction to give: it is left out of the search.
+constexpr Real kDegenerateArea = Real(1e-12);  // (unit: m^2)
+
+// The heart's surface as a heart: finite, with triangles that have an area, of a heart's size
+// (between a square millimetre and ten square metres: millimetres read as metres are a million
+// times too large, metres read as millimetres a million times too small).
+void check_heart(const geometry::TriangleMesh& heart) {
+  Real area = 0;
+  std::size_t with_area = 0;
+  for (const geometry::Triangle& t : heart.triangles) {
+    for (const std::uint32_t v : t) {
+      if (v >= heart.vertices.size() || !heart.vertices[v].allFinite())
+        throw SaiError("the heart surface has a missing or non-finite vertex");
+    }
+    const Real a = triangle_area(heart, t);
+    area += a;
+    with_area += a > kDegenerateArea ? 1 : 0;
+  }
+  if (with_area == 0)
+    throw SaiError("the heart surface is degenerate: none of its " +
+                   std::to_string(heart.triangles.size()) + " triangles has an area");
+  if (!(area >= kMinHeartArea && area <= kMaxHeartArea)) {
+    throw SaiError("the heart surface's area is " + number_text(area) +
+                   " m^2, not a heart's (an adult's is a few hundred cm^2): check its units");
+  }
+}
+
 Vec3 nearest_on_surface(const geometry::TriangleMesh& m, const Vec3& p) {
   Real best = std::numeric_limits<Real>::infinity();
   Vec3 at = Vec3::Zero();
   for (const geometry::Triangle& t : m.triangles) {
+    if (!(triangle_area(m, t) > kDegenerateArea)) continue;
     const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
         p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]);
     if (q.distance2 < best) best = q.distance2, at = q.point;
@@ -42,11 +84,16 @@ SideReference make_side_reference(std::span<const Vec3> centerline,
                                   const geometry::TriangleMesh& heart) {
   if (centerline.size() < 2) throw SaiError("the centerline needs at least two points");
   if (heart.triangles.empty()) throw SaiError("the heart surface has no triangles");
+  check_heart(heart);
   SideReference r;
   r.centerline.assign(centerline.begin(), centerline.end());
   for (std::size_t k = 0; k < centerline.size(); ++k) {
     if (!centerline[k].allFinite())
       throw SaiError("centerline point " + std::to_string(k + 1) + " is not finite");
+    if ((centerline[k] - centerline[0]).norm() > kMaxSaiDistance)
+      throw SaiError("centerline point " + std::to_string(k + 1) + " is more than " +
+                     number_text(kMaxSaiDistance) +
+                     " m from the first: not a vessel in a chest (millimetres read as metres?)");
     if (k > 0 && (centerline[k] - centerline[k - 1]).norm() < Real(1e-9))
       throw SaiError("centerline points " + std::to_string(k) + " and " + std::to_string(k + 1) +
                      " coincide");
@@ -102,6 +149,11 @@ SaiResult spatial_asymmetry(const SideReference& r, std::span<const Vec3> tips, 
     if (!tips[i].allFinite())
       throw SaiError("trajectory sample " + std::to_string(i + 1) + " is not finite");
     const SideDistance s = side_distance(r, tips[i]);
+    if (!(s.distance <= kMaxSaiDistance))
+      throw SaiError("trajectory sample " + std::to_string(i + 1) + " is " +
+                     number_text(s.distance) + " m from the centerline, more than " +
+                     number_text(kMaxSaiDistance) +
+                     " m: not a tool in a chest (millimetres read as metres?)");
     sum += Real(s.side) * s.distance / radius;  // eq. 20's term
     distance += s.distance;
     heart_side += s.side < 0 ? 1 : 0;

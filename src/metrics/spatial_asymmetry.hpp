@@ -16,6 +16,11 @@
 namespace imasim::metrics {
 
 inline constexpr Real kSaiRadius = Real(0.002);  // R of eq. 20 (unit: m)
+// Beyond what a chest holds: a tool tip this far from the centerline, or a centerline this long,
+// is a file in other units or a broken one, and its score would be meaningless (unit: m).
+inline constexpr Real kMaxSaiDistance = 10;
+// A heart surface's area outside these is not a heart in metres (unit: m^2).
+inline constexpr Real kMinHeartArea = Real(1e-6), kMaxHeartArea = 10;
 
 class SaiError : public std::invalid_argument {
  public:
@@ -29,8 +34,10 @@ struct SideReference {
   std::vector<Vec3> heart_side;  // one per centerline point
 };
 
-// Throws SaiError for fewer than two points, repeated consecutive points, an empty heart or a
-// heart surface that touches the centerline (no side can be told).
+// Throws SaiError for fewer than two points, repeated consecutive points, points more than
+// kMaxSaiDistance apart, an empty heart, a heart with no triangle of any area or an area outside
+// [kMinHeartArea, kMaxHeartArea], or a heart surface that touches the centerline (no side can be
+// told). Triangles without an area are left out of the nearest-point search.
 SideReference make_side_reference(std::span<const Vec3> centerline,
                                   const geometry::TriangleMesh& heart);
 
@@ -41,8 +48,8 @@ struct SaiResult {
   Real heart_side_fraction = 0;  // share of samples on the heart's side (-)
 };
 
-// One tool's trajectory; R > 0 (SaiError otherwise, or for a non-finite sample). No samples:
-// all zero.
+// One tool's trajectory; R > 0 (SaiError otherwise, or for a non-finite sample or one more than
+// kMaxSaiDistance from the centerline). No samples: all zero (`imasim sai` refuses them).
 SaiResult spatial_asymmetry(const SideReference& reference, std::span<const Vec3> tips,
                             Real radius = kSaiRadius);
 

@@ -94,6 +94,59 @@ std::string ply_line_problem(const std::vector<std::string>& w, std::uint64_t li
          "'; expected format, element, property, comment, obj_info or end_header)";
 }
 
+// The integer part of each number in a text, one character at a time: the significant digits of
+// a digit run that starts a number (not a fraction's or an exponent's). Assimp reads an ASCII
+// PLY's integer properties into 32 bits without a check, so 4294967297 became 1 and passed.
+class IntegerPartScan {
+ public:
+  // Feeds one character; the significant digits of the integer part it is in (0 outside one).
+  std::uint32_t feed(char c) {
+    if (c >= '0' && c <= '9') {
+      if (counting_ && (digits_ > 0 || c != '0')) ++digits_;
+    } else {
+      const bool exponent_sign = (c == '+' || c == '-') && (previous_ == 'e' || previous_ == 'E');
+      counting_ = !(c == '.' || c == 'e' || c == 'E' || exponent_sign);
+      digits_ = 0;
+    }
+    previous_ = c;
+    return digits_;
+  }
+
+ private:
+  bool counting_ = true;
+  char previous_ = ' ';
+  std::uint32_t digits_ = 0;
+};
+
+// An ASCII PLY body's numbers, after the header's `line` lines: none may have more integer
+// digits than a coordinate (at most kMaxFileCoordinate) or an index (below kMaxMeshElements)
+// can.
+std::string ply_body_problem(std::ifstream& in, std::uint64_t line) {
+  std::array<char, 1 << 16> buffer;
+  IntegerPartScan scan;
+  std::string number;
+  while (in) {
+    in.read(buffer.data(), buffer.size());
+    const std::streamsize got = in.gcount();
+    for (std::streamsize i = 0; i < got; ++i) {
+      const char c = buffer[static_cast<std::size_t>(i)];
+      if (c == '\n') ++line;
+      const std::uint32_t digits = scan.feed(c);
+      if (digits == 0) {
+        number.clear();
+        continue;
+      }
+      number += c;
+      if (digits > kMaxMeshIntegerDigits)
+        return "PLY line " + std::to_string(line) + ": a number with more than " +
+               std::to_string(kMaxMeshIntegerDigits) + " digits before its point (" + number +
+               "...), beyond any coordinate or index of a mesh (integer properties that long "
+               "overflow as they are read)";
+    }
+  }
+  return {};
+}
+
 // Each element's declared count against the bytes after the header: an entry takes at least
 // its fixed-size properties (binary) or two bytes per property (ASCII: a digit and a
 // separator). Every header line must be one the format defines.
@@ -155,7 +208,7 @@ std::string ply_problem(const std::string& path, std::uint64_t file_bytes) {
              " entries, which with those before it need at least " + std::to_string(needed) +
              " bytes, but the file has " + std::to_string(body) + " after its header";
   }
-  return {};
+  return binary ? std::string() : ply_body_problem(in, line_number + 1);
 }
 
 std::string obj_problem(const std::string& path) {

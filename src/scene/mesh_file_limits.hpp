@@ -1,8 +1,8 @@
 #pragma once
 // Checks on a mesh file before and right after Assimp reads it, so that a hostile file is a
 // clear MeshFileError instead of an allocation of gigabytes, a hang or a silently absurd mesh:
-// the file's size, a PLY header's element counts against the bytes that follow it, an OBJ's
-// line lengths, and every vertex's coordinates.
+// the file's size, a PLY header's element counts against the bytes that follow it, the digits
+// of an ASCII PLY's numbers, an OBJ's line lengths, and every vertex's coordinates.
 #include <cstdint>
 #include <string>
 
@@ -22,6 +22,10 @@ constexpr std::uint64_t kMaxObjLineBytes = 64 << 10;
 // A coordinate in file units: a million millimetres is a kilometre (20-digit numbers are not a
 // heart in any unit).
 constexpr double kMaxFileCoordinate = 1e6;
+
+// Digits before the point of any number in an ASCII mesh file: a coordinate is at most 10^6 and an
+// index below 10^7, and a 32-bit integer property overflows from ten digits on.
+constexpr std::uint32_t kMaxMeshIntegerDigits = 9;
 
 // Why the file at `path` (a regular file) is refused before Assimp reads it, or empty.
 std::string mesh_file_problem(const std::string& path);
