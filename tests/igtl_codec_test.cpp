@@ -31,6 +31,12 @@ Pose turned_pose(const Vec3& translation_m) {
   return p;
 }
 
+// A left-hand pose at x (m) stamped `stamp`, arriving at `arrival` on the loop's clock (unit: s).
+bool left_pose_at(IgtlDecoder& d, ConsoleInput& in, double stamp, double arrival, double x) {
+  const Message m{encode_pose("LeftHand", turned_pose(Vec3(x, 0, 0)), stamp)};
+  return d.apply(m.header(), m.body(), m.body_bytes(), in, arrival);
+}
+
 TEST(IgtlCodec, APoseInMillimetresArrivesInMetresWithItsVelocity) {
   IgtlDecoder d;
   ConsoleInput in;
@@ -167,6 +173,54 @@ TEST(IgtlCodec, UnstampedMessagesAreTakenInArrivalOrderAndTimedOnArrival) {
   EXPECT_TRUE(d.apply(late.header(), late.body(), late.body_bytes(), in, 2.0));
   EXPECT_FALSE(d.apply(late.header(), late.body(), late.body_bytes(), in, 2.1));
   EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::out_of_order)], 1u);
+}
+
+// One pose stamped 2^32 - 1 s was adopted as the device's last stamp and every later pose was
+// refused as out of order for the rest of the session. A stamp more than 1 s ahead of the
+// sender's clock (stamp minus arrival, as its first stamped message showed) is refused instead.
+TEST(IgtlCodec, AStampFarInTheFutureIsRefusedNotAdopted) {
+  IgtlDecoder d;
+  ConsoleInput in;
+  auto at = [&](double stamp, double arrival, double x) {
+    return left_pose_at(d, in, stamp, arrival, x);
+  };
+  ASSERT_TRUE(at(100.0, 10.0, 0.001));  // the sender's clock runs 90 s ahead of the loop's
+  EXPECT_FALSE(at(4294967295.0, 10.01, 0.5));
+  EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::future_stamp)], 1u);
+  EXPECT_TRUE(at(100.02, 10.02, 0.002));  // followed still
+  EXPECT_TRUE(at(100.53, 10.04, 0.003));  // half a second of jitter ahead is not the future
+  EXPECT_NEAR(in.left.pose.translation.x(), 0.003, 1e-7);
+  // A replayed old message, alone, is refused as out of order and changes nothing.
+  EXPECT_FALSE(at(50.0, 10.05, 0.4));
+  EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::out_of_order)], 1u);
+  EXPECT_TRUE(at(100.6, 10.06, 0.004));
+  // Without a clock (arrival 0) stamps are only ordered.
+  IgtlDecoder plain;
+  const Message far{encode_pose("LeftHand", turned_pose(Vec3::Zero()), 4294967295.0)};
+  EXPECT_TRUE(plain.apply(far.header(), far.body(), far.body_bytes(), in));
+}
+
+// A first message stamped far ahead set the sender's clock; the stamps after it agree with each
+// other and are behind it. After half a second of them the clock and the order start again from
+// them: the device is followed, not locked out.
+TEST(IgtlCodec, AnOddFirstStampIsForgottenOnceTheSenderAgreesWithItself) {
+  IgtlDecoder d;
+  ConsoleInput in;
+  auto at = [&](double stamp, double arrival, double x) {
+    return left_pose_at(d, in, stamp, arrival, x);
+  };
+  ASSERT_TRUE(at(4294967295.0, 1.0, 0.001));
+  int refused = 0, first_followed = -1;
+  for (int k = 1; k <= 100; ++k) {
+    const bool taken = at(20.0 + 0.01 * k, 1.0 + 0.01 * k, 0.001 * k);
+    if (!taken) ++refused;
+    if (taken && first_followed < 0) first_followed = k;
+  }
+  EXPECT_EQ(first_followed, 51);  // 0.5 s of arrival after the first one behind (k = 1)
+  EXPECT_EQ(refused, 50);
+  EXPECT_NEAR(in.left.pose.translation.x(), 0.1, 1e-7);
+  EXPECT_DOUBLE_EQ(in.left.time_s, 21.0);
+  EXPECT_EQ(d.counters().refused[std::size_t(IgtlRefusal::out_of_order)], 50u);
 }
 
 // Refusals are told apart by the sender's device name, so that a user can see that a tracker

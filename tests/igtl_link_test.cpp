@@ -134,6 +134,66 @@ TEST(IgtlLink, APeerSendingGarbageIsDroppedAndTheNextIsServed) {
   EXPECT_TRUE(input.right.pose.translation.isApprox(hand.translation, 1e-6));
 }
 
+// 100 k refused messages at once held the 1 kHz loop 20-54 ms: poll read the whole socket. It
+// reads at most kIgtlPollBytes a tick now; the rest waits in the socket for the next ticks.
+TEST(IgtlLink, AFloodIsReadABoundedAmountAPoll) {
+  IgtlLink link(any_port_server());
+  const Peer flood = Peer::connect_to(link.port());
+  ConsoleInput input;
+  poll_until(link, input, [&] { return link.connected(); });
+  const std::vector<std::uint8_t> one = encode_pose("Stranger", Pose{}, 1.0);
+  constexpr int kMessages = 600;  // 64 KB: within the socket's buffer
+  std::vector<std::uint8_t> all;
+  for (int k = 0; k < kMessages; ++k)
+    all.insert(all.end(), one.begin(), one.end());
+  flood.send(all);
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // all of it in the socket
+  link.poll(input, 1.0);
+  const std::uint64_t first = link.counters().refused_total();
+  EXPECT_GT(first, 0u);
+  EXPECT_LE(first, kIgtlPollBytes / one.size());
+  int polls = 1;
+  poll_until(link, input, [&] {
+    ++polls;
+    return link.counters().refused_total() == std::uint64_t(kMessages);
+  });
+  EXPECT_EQ(link.counters().refused_total(), std::uint64_t(kMessages));
+  EXPECT_GE(polls, int(all.size() / kIgtlPollBytes));
+  EXPECT_TRUE(link.connected());
+}
+
+// A tracking-only peer never reads the forces sent back: its socket fills. The force is then
+// skipped and counted, the peer kept and still followed (it was dropped, and with it the
+// tracker), and no message is ever cut in two.
+TEST(IgtlLink, APeerThatReadsNoForcesKeepsItsConnection) {
+  IgtlLink link(any_port_server());
+  const Peer tracker = Peer::connect_to(link.port());
+  ConsoleInput input;
+  poll_until(link, input, [&] { return link.connected(); });
+  int sent = 0;
+  for (int k = 0; k < 1'000'000 && link.forces_skipped() < 10; ++k)
+    sent += link.send_force(Hand::left, Vec3(0, 0, 0.5), 0.001 * k) ? 1 : 0;
+  ASSERT_EQ(link.forces_skipped(), 10u);
+  EXPECT_TRUE(link.connected());
+  EXPECT_EQ(link.peers_dropped(), 0u);
+  Pose hand;
+  hand.translation = Vec3(0.001, 0, 0);
+  tracker.send(encode_pose("LeftHand", hand, 5.0));
+  poll_until(link, input, [&] { return input.left.has_pose; });
+  EXPECT_TRUE(input.left.pose.translation.isApprox(hand.translation, 1e-6));
+  // Every message that left is whole: the tracker reads each one back as a force.
+  for (int k = 0; k < sent; ++k) {
+    if (k % 64 == 0) link.poll(input, 0);  // the rest of a message begun goes out
+    const std::vector<std::uint8_t> m = tracker.receive_message();
+    ASSERT_FALSE(m.empty()) << k << " of " << sent;
+    const auto force =
+        decode_sensor(m.data(), m.data() + kIgtlHeaderBytes, m.size() - kIgtlHeaderBytes);
+    ASSERT_TRUE(force && force->size() == 3u) << k;
+    EXPECT_EQ((*force)[2], 0.5);
+  }
+  EXPECT_TRUE(link.send_force(Hand::left, Vec3::Zero(), 10.0));  // room again
+}
+
 TEST(IgtlLink, ImasimCanCallATrackersServer) {
   // A tracker's server on an ephemeral loopback port.
   const int listener = ::socket(AF_INET, SOCK_STREAM, 0);

@@ -200,6 +200,7 @@ nlohmann::ordered_json LiveInputs::finish() {
     report_["refused"] = refused;
     report_["peers_seen"] = info[0].peers_seen;
     report_["peers_dropped"] = info[0].peers_dropped;
+    report_["forces_skipped"] = info[0].forces_skipped;
   }
   if (info.size() > 1 && info.back().kind == "pedal")
     report_["pedal_connected_at_end"] = info.back().connected;

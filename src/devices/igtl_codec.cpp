@@ -102,6 +102,8 @@ const char* igtl_refusal_meaning(IgtlRefusal r) {
       return "non-finite values, a rotation that is not one, or values out of range";
     case IgtlRefusal::out_of_order:
       return "a time stamp not later than the device's previous one";
+    case IgtlRefusal::future_stamp:
+      return "a time stamp more than 1 s ahead of the sender's clock as its first messages showed";
   }
   return "?";
 }
@@ -122,6 +124,8 @@ const char* igtl_refusal_name(IgtlRefusal r) {
       return "bad_values";
     case IgtlRefusal::out_of_order:
       return "out_of_order";
+    case IgtlRefusal::future_stamp:
+      return "future_stamp";
   }
   return "?";
 }
@@ -146,6 +150,30 @@ IgtlDecoder::IgtlDecoder(IgtlNames names) : names_(std::move(names)) {
 
 void IgtlDecoder::start_fresh() {
   last_time_s_.fill(-std::numeric_limits<double>::infinity());
+  clock_offset_s_ = behind_since_s_ = behind_offset_s_ = std::numeric_limits<double>::quiet_NaN();
+}
+
+std::optional<IgtlRefusal> IgtlDecoder::stamp_problem(const std::string& device, double time_s,
+                                                      double arrival_s) {
+  if (arrival_s > 0) {
+    const double offset = time_s - arrival_s;
+    if (std::isnan(clock_offset_s_)) clock_offset_s_ = offset;
+    const double lead = offset - clock_offset_s_;
+    if (lead > kIgtlMaxStampLeadS) return IgtlRefusal::future_stamp;
+    if (lead < -kIgtlMaxStampLeadS) {
+      if (std::isnan(behind_since_s_) ||
+          !(std::abs(offset - behind_offset_s_) <= kIgtlMaxStampLeadS)) {
+        behind_since_s_ = arrival_s, behind_offset_s_ = offset;
+      } else if (arrival_s - behind_since_s_ >= kIgtlClockResetS) {
+        start_fresh();  // the clock and the order start again from this message
+        clock_offset_s_ = offset;
+      }
+    } else {
+      behind_since_s_ = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  if (!later_than_last(device, time_s)) return IgtlRefusal::out_of_order;
+  return std::nullopt;
 }
 
 bool IgtlDecoder::refuse(IgtlRefusal r, std::string_view device) {
@@ -221,7 +249,10 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
   // An unused stamp is 0 (the protocol): such messages come in TCP's order, timed on arrival.
   const bool unstamped = head->time_s == 0;
   const double time_s = unstamped ? arrival_s : head->time_s;
-  auto in_order = [&] { return unstamped || later_than_last(head->device, head->time_s); };
+  auto stamp_refused = [&]() -> std::optional<IgtlRefusal> {
+    if (unstamped) return std::nullopt;
+    return stamp_problem(head->device, head->time_s, arrival_s);
+  };
   if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body, head->device);
   const igtl::MessageHeader::Pointer h = unpack_header(header);
   const std::string& device = head->device;
@@ -257,7 +288,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
         !(r.determinant() > 0)) {
       return refuse(IgtlRefusal::bad_values, head->device);
     }
-    if (!in_order()) return refuse(IgtlRefusal::out_of_order, head->device);
+    if (const auto why = stamp_refused()) return refuse(*why, head->device);
     const bool left = device == names_.left_pose || device == names_.left_tool;
     HandInput& hand = input.hand(left ? Hand::left : Hand::right);
     const PoseFrame frame = tool ? PoseFrame::tool : PoseFrame::hand;
@@ -284,7 +315,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
     if (buttons) {
       if (v.size() != 2 || (v[0] != 0 && v[0] != 1) || v[1] < 0 || v[1] > 1)
         return refuse(IgtlRefusal::bad_values, head->device);
-      if (!in_order()) return refuse(IgtlRefusal::out_of_order, head->device);
+      if (const auto why = stamp_refused()) return refuse(*why, head->device);
       HandInput& hand = input.hand(device == names_.left_buttons ? Hand::left : Hand::right);
       hand.has_buttons = true;
       hand.clutch = v[0] == 1;
@@ -293,7 +324,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
       if (v.empty() || v.size() > 2 || (v[0] != 0 && v[0] != 1 && v[0] != 2) ||
           (v.size() == 2 && !(v[1] >= 0 && v[1] <= kMaxPowerW)))
         return refuse(IgtlRefusal::bad_values, head->device);
-      if (!in_order()) return refuse(IgtlRefusal::out_of_order, head->device);
+      if (const auto why = stamp_refused()) return refuse(*why, head->device);
       input.pedal = static_cast<haptics::CauteryMode>(int(v[0]));
       if (v.size() == 2) input.power_w = Real(v[1]);
     }

@@ -10,8 +10,9 @@
 // Every message is checked before use: its header, its CRC, a body no larger than the type
 // needs, a known type and device name, finite values, a rotation that is one, a time stamp
 // later than the device's previous one on this connection (a replayed or reordered message is
-// refused; a stamp of 0 is no stamp: the message is timed by its arrival). A refused
-// message changes nothing and is counted by reason.
+// refused; a stamp of 0 is no stamp: the message is timed by its arrival) and not far ahead of
+// the sender's clock (kIgtlMaxStampLeadS). A refused message changes nothing and is counted by
+// reason.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -44,8 +45,18 @@ enum class IgtlRefusal : std::uint8_t {
   bad_body,        // a CRC mismatch or a body the type cannot unpack
   bad_values,      // non-finite values, a rotation that is not one, values out of range
   out_of_order,    // a time stamp not later than the device's previous message
+  future_stamp,    // a time stamp far ahead of the sender's clock as its first messages showed
 };
-inline constexpr std::size_t kIgtlRefusals = 7;
+inline constexpr std::size_t kIgtlRefusals = 8;
+
+// A sender's clock against the loop's on one connection (stamp minus arrival): set by its first
+// stamped message; a stamp more than this ahead of it is refused, not adopted (one stamped
+// 2^32 - 1 s had locked its device name for the session). Stamps this far behind it for
+// kIgtlClockResetS of arrival, agreeing with each other, reset it and the order: the reference
+// was the odd one (a first message stamped far ahead, a sender whose clock was stepped back).
+// A single replayed old message is still refused as out of order. (unit: s)
+inline constexpr double kIgtlMaxStampLeadS = 1.0;
+inline constexpr double kIgtlClockResetS = 0.5;
 const char* igtl_refusal_name(IgtlRefusal r);
 const char* igtl_refusal_meaning(IgtlRefusal r);  // one line for a user
 
@@ -85,9 +96,9 @@ class IgtlDecoder {
   std::optional<IgtlHeader> read_header(const std::uint8_t* bytes);
 
   // Applies a whole message (header and body) to `input`; false (and counted) when refused.
-  // `arrival_s`: when it arrived (the loop's clock, unit: s). A time stamp of 0 means unstamped
-  // (the protocol's unused stamp, which common trackers send): such a message is taken in the
-  // order it arrives and timed by its arrival.
+  // `arrival_s`: when it arrived (the loop's clock, unit: s; 0: no clock, so no check of stamps
+  // against it). A time stamp of 0 means unstamped (the protocol's unused stamp, which common
+  // trackers send): such a message is taken in the order it arrives and timed by its arrival.
   bool apply(const std::uint8_t* header, const std::uint8_t* body, std::size_t body_bytes,
              ConsoleInput& input, double arrival_s = 0);
 
@@ -101,10 +112,17 @@ class IgtlDecoder {
  private:
   bool refuse(IgtlRefusal r, std::string_view device);
   bool later_than_last(const std::string& device, double time_s);
+  // Why a stamped message's stamp is refused, or empty (and its order then recorded).
+  std::optional<IgtlRefusal> stamp_problem(const std::string& device, double time_s,
+                                           double arrival_s);
 
   IgtlNames names_;
   IgtlCounters counters_;
   std::array<double, 7> last_time_s_;  // per mapped device: poses, tools, buttons, pedal
+  // The sender's clock (stamp - arrival) on this connection; NaN until its first stamped message.
+  double clock_offset_s_ = 0;
+  // Since when (arrival) stamps have been far behind the clock, agreeing on this offset; NaN: not.
+  double behind_since_s_ = 0, behind_offset_s_ = 0;
 };
 
 // The values of a whole SENSOR message (checked as apply checks it), or empty: for a device's

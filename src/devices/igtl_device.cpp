@@ -52,6 +52,7 @@ DeviceInfo IgtlDevice::info() const {
     d.refused_by_name.emplace_back("(other names)", counted.refused_others);
   d.peers_seen = link_.peers_seen();
   d.peers_dropped = link_.peers_dropped();
+  d.forces_skipped = link_.forces_skipped();
   return d;
 }
 

@@ -7,6 +7,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -80,7 +81,8 @@ IgtlLink::IgtlLink(const IgtlLinkConfig& config) : config_(config), decoder_(con
     peer_ = fd;
     ++peers_seen_;
   }
-  buffer_.reserve(kIgtlHeaderBytes + kIgtlMaxBodyBytes);
+  buffer_.reserve(kIgtlHeaderBytes + kIgtlMaxBodyBytes + kIgtlPollBytes);
+  outgoing_.reserve(kIgtlHeaderBytes + kIgtlMaxBodyBytes);
 }
 
 IgtlLink::~IgtlLink() {
@@ -92,6 +94,7 @@ void IgtlLink::drop_peer() {
   if (peer_ >= 0) ::close(peer_);
   peer_ = -1;
   buffer_.clear();
+  outgoing_.clear();
   ++peers_dropped_;
 }
 
@@ -106,10 +109,14 @@ int IgtlLink::poll(ConsoleInput& input, double now_s) {
     }
   }
   if (peer_ < 0) return 0;
+  flush_outgoing();  // the rest of a force the peer's socket had no room for
+  if (peer_ < 0) return 0;
   int accepted = 0;
   std::uint8_t chunk[4096];
-  while (true) {
-    const ssize_t n = ::recv(peer_, chunk, sizeof chunk, 0);
+  // At most kIgtlPollBytes a tick: a flood waits in the socket for the next ticks instead of
+  // holding the 1 kHz loop (100 k refused messages at once held it 20-54 ms).
+  for (std::size_t read = 0; read < kIgtlPollBytes;) {
+    const ssize_t n = ::recv(peer_, chunk, std::min(sizeof chunk, kIgtlPollBytes - read), 0);
     if (n == 0) {  // the peer closed
       drop_peer();
       return accepted;
@@ -119,6 +126,7 @@ int IgtlLink::poll(ConsoleInput& input, double now_s) {
       if (errno != EAGAIN && errno != EWOULDBLOCK) drop_peer();
       return accepted;
     }
+    read += std::size_t(n);
     buffer_.insert(buffer_.end(), chunk, chunk + n);
     // Whole messages out of the buffer.
     std::size_t at = 0;
@@ -138,23 +146,55 @@ int IgtlLink::poll(ConsoleInput& input, double now_s) {
     }
     buffer_.erase(buffer_.begin(), buffer_.begin() + std::ptrdiff_t(at));
   }
+  return accepted;
 }
 
-bool IgtlLink::send_force(Hand hand, const Vec3& force_n, double time_s) {
-  if (peer_ < 0) return false;
-  const std::string& name =
-      hand == Hand::left ? config_.names.left_force : config_.names.right_force;
-  const std::vector<std::uint8_t> message = encode_force(name, force_n, time_s);
+bool IgtlLink::flush_outgoing() {
   std::size_t sent = 0;
-  while (sent < message.size()) {
-    const ssize_t n = ::send(peer_, message.data() + sent, message.size() - sent, MSG_NOSIGNAL);
+  while (peer_ >= 0 && sent < outgoing_.size()) {
+    const ssize_t n = ::send(peer_, outgoing_.data() + sent, outgoing_.size() - sent,
+                             MSG_NOSIGNAL | MSG_DONTWAIT);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {  // a full socket means the peer stopped reading: it is gone for haptics
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;  // still full: later
+    if (n <= 0) {
       drop_peer();
       return false;
     }
     sent += std::size_t(n);
   }
+  outgoing_.erase(outgoing_.begin(), outgoing_.begin() + std::ptrdiff_t(sent));
+  return peer_ >= 0;
+}
+
+bool IgtlLink::send_force(Hand hand, const Vec3& force_n, double time_s) {
+  if (peer_ < 0 || !flush_outgoing()) return false;
+  // A peer that does not read forces (a tracker) fills its socket: the force is skipped, and
+  // the peer is neither waited for nor dropped. A message is never cut: what did not fit of
+  // the one begun is sent first.
+  if (!outgoing_.empty()) {
+    ++forces_skipped_;
+    return false;
+  }
+  const std::string& name =
+      hand == Hand::left ? config_.names.left_force : config_.names.right_force;
+  const std::vector<std::uint8_t> message = encode_force(name, force_n, time_s);
+  std::size_t sent = 0;
+  while (sent < message.size()) {
+    const ssize_t n =
+        ::send(peer_, message.data() + sent, message.size() - sent, MSG_NOSIGNAL | MSG_DONTWAIT);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;
+    if (n <= 0) {
+      drop_peer();
+      return false;
+    }
+    sent += std::size_t(n);
+  }
+  if (sent == 0) {
+    ++forces_skipped_;
+    return false;
+  }
+  outgoing_.insert(outgoing_.end(), message.begin() + std::ptrdiff_t(sent), message.end());
   return true;
 }
 

@@ -5,6 +5,7 @@
 // leave as SENSOR messages. Loopback only unless the configuration allows a remote address (the
 // scene file names one). A peer that sends something that is not an OpenIGTLink header is
 // dropped (the stream cannot be resynchronised); a server then waits for the next peer.
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -24,6 +25,10 @@ struct IgtlLinkConfig {
   IgtlNames names;
 };
 
+// What one poll reads from the socket at most: 16 KiB a millisecond is 16 MB/s, hundreds of times
+// what two hands, their buttons and a pedal send at 1 kHz (unit: bytes).
+inline constexpr std::size_t kIgtlPollBytes = 16 << 10;
+
 class IgtlLinkError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -37,29 +42,35 @@ class IgtlLink {
   IgtlLink(const IgtlLink&) = delete;
   IgtlLink& operator=(const IgtlLink&) = delete;
 
-  // Accepts a waiting peer (server), reads what has arrived and applies each whole message to
-  // `input`, unstamped ones timed `now_s` (the loop's clock). Never blocks. Returns the messages
-  // accepted.
+  // Accepts a waiting peer (server), reads what has arrived, up to kIgtlPollBytes (the rest waits
+  // for the next poll), and applies each whole message to `input`, unstamped ones timed `now_s`
+  // (the loop's clock). Never blocks. Returns the messages accepted.
   int poll(ConsoleInput& input, double now_s = 0);
 
-  // Sends the force on one hand; false when no peer is connected or the peer is gone.
+  // Sends the force on one hand; false when no peer is connected, the peer is gone, or its
+  // socket is full (a peer that does not read forces): the force is then skipped and counted,
+  // and the peer kept. Never blocks.
   bool send_force(Hand hand, const Vec3& force_n, double time_s);
 
   bool connected() const { return peer_ >= 0; }
   std::uint16_t port() const { return port_; }  // the port listened on (server)
   const IgtlCounters& counters() const { return decoder_.counters(); }
   std::uint64_t peers_dropped() const { return peers_dropped_; }
-  std::uint64_t peers_seen() const { return peers_seen_; }  // connections made, all told
+  std::uint64_t peers_seen() const { return peers_seen_; }          // connections made, all told
+  std::uint64_t forces_skipped() const { return forces_skipped_; }  // for a full socket
 
  private:
   void drop_peer();
+  // Sends what it can of `outgoing_`; false when the peer is gone (and dropped).
+  bool flush_outgoing();
 
   IgtlLinkConfig config_;
   IgtlDecoder decoder_;
   int listener_ = -1, peer_ = -1;
   std::uint16_t port_ = 0;
   std::vector<std::uint8_t> buffer_;
-  std::uint64_t peers_dropped_ = 0, peers_seen_ = 0;
+  std::vector<std::uint8_t> outgoing_;  // the unsent rest of the last force message
+  std::uint64_t peers_dropped_ = 0, peers_seen_ = 0, forces_skipped_ = 0;
 };
 
 // Whether `address` (dotted IPv4) is a loopback address (127.0.0.0/8).

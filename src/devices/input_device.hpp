@@ -25,6 +25,7 @@ struct DeviceInfo {
   // and the peers it has had; empty for devices that refuse nothing.
   std::vector<std::pair<std::string, std::uint64_t>> refused_by_reason, refused_by_name;
   std::uint64_t peers_seen = 0, peers_dropped = 0;
+  std::uint64_t forces_skipped = 0;  // not sent: the peer's socket was full (it reads no forces)
 };
 
 class InputDevice {
