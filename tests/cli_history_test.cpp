@@ -237,4 +237,36 @@ TEST(CliHistory, BadRequestsAreRefusedWithAClearMessage) {
   EXPECT_NE(both.err.find("--db excludes --no-db"), std::string::npos) << both.err;
 }
 
+// Records that cannot take a session are refused before it is spent: a damaged file (it failed
+// only at the end, exit 4) and a device (/dev/null read as empty and took every write).
+TEST(CliHistory, DamagedRecordsAndDevicesAreRefusedBeforeTheSession) {
+  const std::string db = fresh("damaged.sqlite");
+  ASSERT_EQ(recorded_run(fresh("d1.csv"), "--seconds 0.1 --db " + db + " --trainee dana").exit_code,
+            0);
+  const auto bytes = fs::file_size(db);
+  ASSERT_GE(bytes, 3u * 4096u);
+  {
+    std::fstream f(db, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(2 * 4096);
+    const std::string garbage(bytes - 2 * 4096, char(0xa5));
+    f.write(garbage.data(), std::streamsize(garbage.size()));
+  }
+  const std::string csv = fresh("d2.csv");
+  const Finished damaged = recorded_run(csv, "--seconds 0.5 --db " + db + " --trainee dana");
+  EXPECT_EQ(damaged.exit_code, 2);
+  EXPECT_NE(damaged.err.find(db + ": the trainee records are damaged (quick_check: "),
+            std::string::npos)
+      << damaged.err;
+  EXPECT_TRUE(damaged.out.empty()) << damaged.out;
+  EXPECT_FALSE(fs::exists(csv));  // nothing simulated, nothing recorded
+  for (const std::string& command :
+       {std::string("history --db /dev/null"), "run --headless --script " + kScript +
+                                                   " --seconds 0.1 --record " + fresh("d3.csv") +
+                                                   " --db /dev/null"}) {
+    const Finished device = run(command);
+    EXPECT_EQ(device.exit_code, 2) << command;
+    EXPECT_NE(device.err.find("/dev/null: not a regular file"), std::string::npos) << device.err;
+  }
+}
+
 }  // namespace

@@ -190,6 +190,71 @@ TEST(TraineeRecords, AFileThatIsNotSqliteIsRefusedNamingIt) {
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), text);  // untouched
 }
 
+// A damaged file passed the check at the start and failed only at the end, after the session
+// had been spent ("database disk image is malformed", exit 4). It is refused on opening now.
+TEST(TraineeRecords, ADamagedFileIsRefusedBeforeTheSession) {
+  const std::string path = fresh_path("damaged.sqlite");
+  {
+    TraineeRecords r(path, kAppend);
+    for (int k = 0; k < 20; ++k)
+      r.append_session(example_session("a", "2025-03-01T14:05:09Z", k));
+  }
+  const auto pages = fs::file_size(path) / 4096;
+  ASSERT_GE(pages, 4u);
+  {  // the pages after the first two overwritten; the header stays readable
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(2 * 4096);
+    const std::string garbage((pages - 2) * 4096, char(0xa5));
+    f.write(garbage.data(), std::streamsize(garbage.size()));
+  }
+  const std::string m = message_of([&] { TraineeRecords r(path, kAppend); });
+  EXPECT_EQ(m.rfind(path + ": ", 0), 0u) << m;
+  EXPECT_TRUE(m.find("damaged") != std::string::npos || m.find("malformed") != std::string::npos)
+      << m;
+}
+
+// /dev/null read as an empty database, and took every write.
+TEST(TraineeRecords, ADeviceIsNotADatabaseFile) {
+  for (const auto access : {kAppend, kRead}) {
+    const std::string m = message_of([&] { TraineeRecords r("/dev/null", access); });
+    EXPECT_EQ(m, "/dev/null: not a regular file (the trainee records are a database file)");
+  }
+}
+
+// Another process holding the write lock made the append at a session's end wait 30 s and then
+// lose the session. It waits a bounded time, then holds the session in a file of its own beside
+// the records, which the next opening for append adds (and removes).
+TEST(TraineeRecords, ALockedDatabaseHoldsTheSessionPendingAndTheNextOpeningAddsIt) {
+  const std::string path = fresh_path("locked.sqlite");
+  const SessionRecord session = example_session("b", "2025-03-02T09:00:00Z", 1);
+  std::string pending;
+  {
+    TraineeRecords records(path, kAppend);
+    imasim::metrics::SqliteDatabase other(path, SQLITE_OPEN_READWRITE, 1000);
+    other.execute("BEGIN IMMEDIATE", "another process's write");
+    const imasim::metrics::AppendResult r = records.append_or_hold(session, 200);
+    EXPECT_EQ(r.id, 0);
+    pending = r.pending;
+    ASSERT_EQ(pending.rfind(path + ".pending-", 0), 0u) << pending;
+    EXPECT_TRUE(fs::exists(pending));
+    other.execute("ROLLBACK", "another process's write");
+    EXPECT_TRUE(TraineeRecords(path, kRead).sessions().empty());  // not in yet
+  }
+  const TraineeRecords next(path, kAppend);
+  EXPECT_EQ(next.imported_pending(), 1u);
+  ASSERT_EQ(next.notes().size(), 1u);
+  EXPECT_NE(next.notes()[0].find("1 held session(s) from " + pending), std::string::npos);
+  EXPECT_FALSE(fs::exists(pending));
+  const std::vector<SessionRecord> read = next.sessions();
+  ASSERT_EQ(read.size(), 1u);
+  expect_same(read[0], session);
+  // Unlocked, the session goes straight in.
+  TraineeRecords records(path, kAppend);
+  const imasim::metrics::AppendResult r = records.append_or_hold(session, 200);
+  EXPECT_GT(r.id, 0);
+  EXPECT_TRUE(r.pending.empty());
+}
+
 TEST(TraineeRecords, ANewerSchemaOrAnotherProgramsDatabaseIsRefused) {
   const std::string newer = fresh_path("newer.sqlite");
   {

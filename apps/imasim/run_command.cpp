@@ -263,6 +263,8 @@ int run_run_command(const RunOptions& o) {
       const RecordsChoice choice = choose_records(o.trainee, o.db_file);
       trainee = choice.trainee;
       records.emplace(choice.database, metrics::TraineeRecords::Access::append);
+      for (const std::string& note : records->notes())
+        std::cerr << "imasim run: " << note << '\n';
     } catch (const metrics::RecordsError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
@@ -561,6 +563,11 @@ int run_run_command(const RunOptions& o) {
         session.status = out["status"].get<std::string>();
         session.recording = std::filesystem::absolute(o.record_file).string();
         out["trainee_record"] = append_trainee_record(*records, *recording, session);
+        if (out["trainee_record"].contains("pending"))
+          std::cerr << "imasim run: the trainee records stayed locked by another process for "
+                    << metrics::kRecordsAppendWaitMs / 1000 << " s: this session is held in "
+                    << out["trainee_record"]["pending"].get<std::string>()
+                    << " and is added with the next recorded run\n";
       }
     } catch (const std::runtime_error& e) {  // OutputError, RecordsError
       if (!output_failure) output_failure = e.what();

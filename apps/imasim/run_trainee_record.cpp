@@ -56,10 +56,15 @@ nlohmann::ordered_json append_trainee_record(metrics::TraineeRecords& records,
   session.sai_radius = scored.sai_radius;
   session.sai = scored.sai;
   session.metrics = scored.metrics;
-  const std::int64_t id = records.append_session(session);
+  const metrics::AppendResult appended = records.append_or_hold(session);
   nlohmann::ordered_json note;
   note["database"] = std::filesystem::absolute(records.path()).string();
-  note["session_id"] = id;
+  if (appended.pending.empty()) {
+    note["session_id"] = appended.id;
+  } else {  // the records were locked: the session waits beside them for the next recorded run
+    note["session_id"] = nullptr;
+    note["pending"] = std::filesystem::absolute(appended.pending).string();
+  }
   note["trainee"] = session.trainee;
   recording.add_to_side("trainee_record", note);
   return note;

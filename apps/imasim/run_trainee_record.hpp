@@ -24,7 +24,9 @@ metrics::OperatorKind operator_kind_of(const std::string& devices, bool replay);
 
 // Appends `session` (who, when, what was run) with the recording's scores, notes where in the
 // recording's side file and returns the same note for the run's report: {"database", "session_id",
-// "trainee"}. Throws metrics::RecordsError, metrics::OutputError.
+// "trainee"}; when another process held the records locked past kRecordsAppendWaitMs, the session
+// is held pending beside them ("session_id" null, "pending": the file) for the next recorded run
+// to add. Throws metrics::RecordsError, metrics::OutputError.
 nlohmann::ordered_json append_trainee_record(metrics::TraineeRecords& records,
                                              RunRecording& recording,
                                              metrics::SessionRecord session);

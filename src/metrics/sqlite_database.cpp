@@ -28,8 +28,10 @@ const char* kind_name(int type) {
   if ((code & 0xff) == SQLITE_NOTADB)
     throw RecordsError(path + ": is not an SQLite database (" + std::string(what) + ": " + reason +
                        ")");
-  throw RecordsError(path + ": " + std::string(what) + ": " + reason + " (code " +
-                     std::to_string(code) + ")");
+  const std::string message =
+      path + ": " + std::string(what) + ": " + reason + " (code " + std::to_string(code) + ")";
+  if ((code & 0xff) == SQLITE_BUSY || (code & 0xff) == SQLITE_LOCKED) throw RecordsBusy(message);
+  throw RecordsError(message);
 }
 
 }  // namespace
@@ -86,6 +88,15 @@ SqliteStatement SqliteDatabase::prepare(const char* sql, std::string_view what) 
 
 std::int64_t SqliteDatabase::last_insert_rowid() const {
   return sqlite3_last_insert_rowid(db_);
+}
+
+void SqliteDatabase::set_busy_timeout(int ms) {
+  if (const int rc = sqlite3_busy_timeout(db_, ms); rc != SQLITE_OK)
+    fail("setting the busy timeout", rc);
+}
+
+bool SqliteDatabase::read_only() const {
+  return sqlite3_db_readonly(db_, "main") == 1;
 }
 
 SqliteStatement::SqliteStatement(const SqliteDatabase& db, const char* sql, std::string_view what,

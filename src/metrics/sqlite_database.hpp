@@ -17,6 +17,12 @@ class RecordsError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Another connection held a lock past the busy timeout: the same failure, worth another try.
+class RecordsBusy : public RecordsError {
+ public:
+  using RecordsError::RecordsError;
+};
+
 class SqliteStatement;
 
 class SqliteDatabase {
@@ -34,9 +40,13 @@ class SqliteDatabase {
   bool execute_unless_busy(const char* sql, std::string_view what);
   SqliteStatement prepare(const char* sql, std::string_view what);
   std::int64_t last_insert_rowid() const;
+  // How long a statement waits for another connection's lock before it is busy (unit: ms).
+  void set_busy_timeout(int ms);
+  // Whether the file can only be read (write-protected, a read-only file system).
+  bool read_only() const;
 
   const std::string& path() const { return path_; }
-  // "PATH: WHAT: SQLite's message (code N)".
+  // "PATH: WHAT: SQLite's message (code N)"; RecordsBusy for a lock held past the timeout.
   [[noreturn]] void fail(std::string_view what, int code) const;
 
  private:

@@ -2,13 +2,18 @@
 
 #include <sqlite3.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <limits>
 #include <set>
 
+#include "math/printable.hpp"
 #include "metrics/trainee_name.hpp"
 
 namespace imasim::metrics {
@@ -186,6 +191,9 @@ TraineeRecords::TraineeRecords(const std::string& path, Access access) {
   std::error_code ec;
   if (access == Access::read_only && !fs::exists(path, ec))
     throw RecordsError(path + ": no trainee records here (no such file)");
+  // /dev/null reads as an empty database and takes every write.
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    throw RecordsError(path + ": not a regular file (the trainee records are a database file)");
   if (access == Access::append) {
     const fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent, ec))
@@ -196,6 +204,9 @@ TraineeRecords::TraineeRecords(const std::string& path, Access access) {
       access == Access::append ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
   db_ = std::make_unique<SqliteDatabase>(path, flags | SQLITE_OPEN_NOMUTEX, kRecordsBusyTimeoutMs);
   prepare_schema(access);
+  if (access == Access::read_only) return;
+  check_before_work();
+  import_pending();
 }
 
 void TraineeRecords::prepare_schema(Access access) {
@@ -252,8 +263,14 @@ void TraineeRecords::prepare_schema(Access access) {
 
 std::int64_t TraineeRecords::append_session(const SessionRecord& s) {
   check_session(s, path());
+  Transaction t(*db_);
+  const std::int64_t id = insert_session(s);
+  t.commit();
+  return id;
+}
+
+std::int64_t TraineeRecords::insert_session(const SessionRecord& s) {
   SqliteDatabase& db = *db_;
-  Transaction t(db);
   SqliteStatement session = db.prepare(
       "INSERT INTO sessions (trainee, date_utc, scene, heart, patient_seed, operator, input, "
       "status, recording, sai_radius_m) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
@@ -305,8 +322,93 @@ std::int64_t TraineeRecords::append_session(const SessionRecord& s) {
     metric.step();
     metric.reset();
   }
-  t.commit();
   return id;
+}
+
+AppendResult TraineeRecords::append_or_hold(const SessionRecord& s, int wait_ms) {
+  check_session(s, path());
+  db_->set_busy_timeout(wait_ms);
+  try {
+    const std::int64_t id = append_session(s);
+    db_->set_busy_timeout(kRecordsBusyTimeoutMs);
+    return {id, {}};
+  } catch (const RecordsBusy&) {
+    db_->set_busy_timeout(kRecordsBusyTimeoutMs);
+  }
+  // Beside the records, a file of its own, which no other process holds.
+  static std::uint32_t held = 0;
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                      std::chrono::system_clock::now().time_since_epoch())
+                      .count();
+  const std::string pending = path() + kPendingInfix + std::to_string(ms) + "-" +
+                              std::to_string(::getpid()) + "-" + std::to_string(held++) +
+                              kPendingSuffix;
+  TraineeRecords(pending, Access::append).append_session(s);
+  return {0, pending};
+}
+
+void TraineeRecords::check_before_work() {
+  SqliteDatabase& db = *db_;
+  if (db.read_only())
+    throw RecordsError(path() +
+                       ": the trainee records cannot be written (a write-protected file or a "
+                       "read-only file system)");
+  {
+    SqliteStatement check = db.prepare("PRAGMA quick_check", "checking the file (quick_check)");
+    const std::string verdict = check.step() ? check.text_column(0) : std::string("no answer");
+    if (verdict != "ok")
+      throw RecordsError(path() + ": the trainee records are damaged (quick_check: " +
+                         printable(verdict, 200) + ")");
+  }
+  // Writing: the write lock taken and given back. Another process's write is over in
+  // milliseconds; a lock held longer is for the append at the end to wait for (or hold the
+  // session pending), not a reason to refuse the session.
+  db.set_busy_timeout(kRecordsCheckWaitMs);
+  try {
+    db.execute("BEGIN IMMEDIATE", "testing for writing");
+    db.execute("ROLLBACK", "testing for writing");
+  } catch (const RecordsBusy&) {
+  }
+  db.set_busy_timeout(kRecordsBusyTimeoutMs);
+}
+
+void TraineeRecords::import_pending() {
+  namespace fs = std::filesystem;
+  const fs::path self(path());
+  const fs::path dir = self.has_parent_path() ? self.parent_path() : fs::path(".");
+  const std::string prefix = self.filename().string() + kPendingInfix;
+  std::vector<fs::path> files;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() > prefix.size() + std::strlen(kPendingSuffix) && name.starts_with(prefix) &&
+        name.ends_with(kPendingSuffix))
+      files.push_back(it->path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) {
+    std::vector<SessionRecord> held;
+    try {
+      held = TraineeRecords(file.string(), Access::read_only).sessions();
+      Transaction t(*db_);
+      for (const SessionRecord& s : held) {
+        check_session(s, file.string());
+        insert_session(s);
+      }
+      t.commit();
+    } catch (const RecordsBusy&) {
+      return;  // locked now: the next append-mode open tries again
+    } catch (const RecordsError& e) {
+      notes_.push_back(std::string("a held session file is left as it is: ") + e.what());
+      continue;
+    }
+    // Committed: the file goes (a crash just here would import it twice, never lose it).
+    for (const char* tail : {"", "-wal", "-shm"})
+      fs::remove(file.string() + tail, ec);
+    ++imported_;
+    notes_.push_back(std::to_string(held.size()) + " held session(s) from " + file.string() +
+                     " added to the trainee records");
+  }
 }
 
 std::vector<SessionRecord> TraineeRecords::sessions(const std::string& trainee) const {

@@ -25,6 +25,20 @@ inline constexpr std::int64_t kRecordsSchemaVersion = 1;
 inline constexpr std::int64_t kRecordsApplicationId = 0x494D4153;
 // How long an append waits for another process's write lock (unit: ms).
 inline constexpr int kRecordsBusyTimeoutMs = 30000;
+// At a session's end the append waits this long; a lock held longer does not cost the session:
+// it is held in a file of its own beside the records (PATH.pending-...sqlite), which the next
+// append-mode open adds (unit: ms).
+inline constexpr int kRecordsAppendWaitMs = 5000;
+// Before a session, how long the test for writing waits for another process's lock (unit: ms).
+inline constexpr int kRecordsCheckWaitMs = 1000;
+inline constexpr const char* kPendingInfix = ".pending-";
+inline constexpr const char* kPendingSuffix = ".sqlite";
+
+// Where a session went: its row id, or (id 0) the pending file holding it.
+struct AppendResult {
+  std::int64_t id = 0;
+  std::string pending;
+};
 
 enum class HeartMode { dynamic, static_heart };
 // Who moved the instruments: a person at devices, an input script (or emulated devices playing
@@ -80,14 +94,19 @@ class TraineeRecords {
     read_only  // must exist; a database with no sessions yet reads as empty
   };
 
-  // Throws RecordsError naming `path`: cannot be opened or created, not SQLite, another
-  // program's database, a newer schema.
+  // Throws RecordsError naming `path`: not a regular file, cannot be opened or created, not
+  // SQLite, another program's database, a newer schema; for append also write-protected or
+  // damaged (PRAGMA quick_check), so that a session is not spent for records that cannot take
+  // it. Opened for append it adds the sessions held pending beside it (notes() says so).
   TraineeRecords(const std::string& path, Access access);
 
   // Appends the session in one transaction; returns its row id. Refuses (RecordsError, nothing
   // written) a bad trainee name or date, an empty scene, repeated metric or instrument names,
   // a value that is not finite.
   std::int64_t append_session(const SessionRecord& session);
+  // As append_session, waiting at most `wait_ms` for another process's lock; past it the session
+  // is held in a pending file beside the records instead (RecordsError as above).
+  AppendResult append_or_hold(const SessionRecord& session, int wait_ms = kRecordsAppendWaitMs);
 
   // Sessions in date order (then in the order appended), with their SAI and metrics; of one
   // trainee, or of everyone when `trainee` is empty.
@@ -98,12 +117,20 @@ class TraineeRecords {
   MetricHistory metric_history(const std::string& trainee, const std::string& metric) const;
 
   const std::string& path() const { return db_->path(); }
+  // What opening did on the user's behalf (held sessions added, a held file left), to be said.
+  const std::vector<std::string>& notes() const { return notes_; }
+  std::size_t imported_pending() const { return imported_; }
 
  private:
   void prepare_schema(Access access);
+  void check_before_work();
+  void import_pending();
+  std::int64_t insert_session(const SessionRecord& session);  // inside the caller's transaction
 
   std::unique_ptr<SqliteDatabase> db_;
   bool has_schema_ = false;  // false: a new, empty database opened read-only
+  std::vector<std::string> notes_;
+  std::size_t imported_ = 0;
 };
 
 // The current time as ISO 8601 UTC to the second ("2025-03-01T14:05:09Z").
