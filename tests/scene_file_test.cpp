@@ -7,6 +7,8 @@
 #include "math/edit_distance.hpp"
 #include "physics/executor.hpp"
 #include "scene/scene_file.hpp"
+#include "scene/scene_key_renames.hpp"
+#include "scene/scene_keys.hpp"
 #include "session/surgical_session.hpp"
 
 namespace imasim::scene {
@@ -127,7 +129,8 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "bad.toml:2: key 'solver.push_out_speed_m_per_s': expected a number in [0.0001, 100], got "
        "0"},
       {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1, 1]]\n",
-       "bad.toml:2: key 'vessel.centerline_m': unknown key"},
+       "bad.toml:2: key 'vessel.centerline_m' was retired; instead: the IMA's course is laid out "
+       "from the anatomy"},
       {"\n[fasica]\nnx = 3\n", "bad.toml:2: unknown table 'fasica'; did you mean 'fascia'?"},
       {"heart_rate_bpm = 70\n",
        "bad.toml:1: key 'heart_rate_bpm': not inside a table; did you mean "
@@ -157,6 +160,94 @@ TEST(SceneFile, ReportsEveryErrorInFileOrder) {
     EXPECT_EQ(e.messages()[1].rfind("bad.toml:4:", 0), 0u);
     EXPECT_EQ(e.messages()[2].rfind("bad.toml:5:", 0), 0u);
   }
+}
+
+// The key fascia.linear_damping_kg_per_s vanished without a migration, and files that loaded
+// before were refused. Renamed keys are read under their new names with a note, lengths converted
+// to the multiples that replaced them.
+TEST(SceneFile, AFileOfTheEarlierKeysLoadsWithNotesAndConvertedValues) {
+  const std::string path = IMASIM_SOURCE_DIR "/tests/data/scene_before_materials.toml";
+  const ThoraxSceneParams p = load_scene_file(path);
+  EXPECT_EQ(p.patch.fascia.object.linear_damping, Real(0.05));
+  EXPECT_EQ(p.patch.fascia.object.angular_damping, Real(0.02));
+  EXPECT_EQ(p.anatomy.fascia_width, Real(0.045));
+  EXPECT_EQ(p.anatomy.fascia_length, Real(0.14));
+  EXPECT_EQ(p.patch.ima_fat.linear_damping, Real(0.04));
+  EXPECT_EQ(p.patch.fascia_fat.linear_damping, Real(0.03));
+  // 5.5 mm over the vessel-to-wall gap (4 mm deep, 1.25 mm radius), 12 mm over 10 mm of fat.
+  EXPECT_NEAR(p.ima_fat_reach, 0.0055 / (0.004 - double(p.patch.vessel.radius)), 1e-12);
+  EXPECT_NEAR(p.fascia_fat_reach, 1.2, 1e-12);
+  ASSERT_EQ(p.file_notes.size(), 8u);
+  EXPECT_EQ(p.file_notes[0].rfind(path + ":11: key 'fascia.linear_damping_kg_per_s' is now "
+                                         "'fascia.linear_damping' (k_l of eq. 4",
+                                  0),
+            0u)
+      << p.file_notes[0];
+  EXPECT_NE(p.file_notes[4].find(":17: key 'ima_fat.max_length_m' is now 'ima_fat.reach' "),
+            std::string::npos)
+      << p.file_notes[4];
+  EXPECT_NE(p.file_notes[4].find("0.0055 m read as 2"), std::string::npos) << p.file_notes[4];
+  // The notes reach the user with the scene's (run and scene check print setup notes).
+  EXPECT_EQ(make_thorax_scene(p).setup_notes.size(), 8u);
+}
+
+// A quantity that no longer exists is refused naming what replaced it; an old name beside its new
+// one, and a length that converts outside the new key's range, are errors too.
+TEST(SceneFile, RetiredKeysAreRefusedNamingWhatReplacedThem) {
+  try {
+    parse_scene(
+        "[chest_wall]\nradius_m = 0.1\n[fascia]\nstretch_compliance_m_per_n = 1e-6\n"
+        "linear_damping = 0.02\nlinear_damping_kg_per_s = 0.05\n[ima_fat]\n"
+        "max_length_m = 0.5\n",
+        "old.toml");
+    FAIL();
+  } catch (const SceneFileError& e) {
+    ASSERT_EQ(e.messages().size(), 4u);
+    EXPECT_EQ(e.messages()[0].rfind("old.toml:2: key 'chest_wall.radius_m' was retired; instead: "
+                                    "the chest wall is laid out from the anatomy",
+                                    0),
+              0u)
+        << e.messages()[0];
+    EXPECT_EQ(e.messages()[1].rfind("old.toml:4: key 'fascia.stretch_compliance_m_per_n' was "
+                                    "retired; instead: fascia.youngs_modulus_pa and "
+                                    "fascia.thickness_m",
+                                    0),
+              0u)
+        << e.messages()[1];
+    EXPECT_EQ(e.messages()[2],
+              "old.toml:6: key 'fascia.linear_damping_kg_per_s' is the old name of "
+              "'fascia.linear_damping', which the file also gives: keep one");
+    EXPECT_EQ(
+        e.messages()[3].rfind("old.toml:8: key 'ima_fat.max_length_m' (now 'ima_fat.reach'", 0), 0u)
+        << e.messages()[3];
+    EXPECT_NE(e.messages()[3].find("outside [1, 10]"), std::string::npos) << e.messages()[3];
+  }
+  try {  // an old key's value out of the new key's range names the old key
+    parse_scene("[fascia]\nlinear_damping_kg_per_s = 5\n", "old.toml");
+    FAIL();
+  } catch (const SceneFileError& e) {
+    ASSERT_EQ(e.messages().size(), 1u);
+    EXPECT_EQ(e.messages()[0].rfind("old.toml:2: key 'fascia.linear_damping_kg_per_s' (now "
+                                    "'fascia.linear_damping'): expected a number in [0, 0.99]",
+                                    0),
+              0u)
+        << e.messages()[0];
+  }
+}
+
+// Every rename leads to a key that exists; no old name is a key of today.
+TEST(SceneFile, EveryRenameLeadsToAKeyAndNoOldNameIsCurrent) {
+  auto is_key = [](std::string_view path) {
+    for (const SceneKey& k : scene_keys())
+      if (k.path == path) return true;
+    return false;
+  };
+  for (const RenamedSceneKey& r : renamed_scene_keys()) {
+    EXPECT_TRUE(is_key(r.new_path)) << r.new_path;
+    EXPECT_FALSE(is_key(r.old_path)) << r.old_path;
+  }
+  for (const RetiredSceneKey& r : retired_scene_keys())
+    EXPECT_FALSE(is_key(r.old_path)) << r.old_path;
 }
 
 TEST(SceneFile, MissingFileIsAClearError) {

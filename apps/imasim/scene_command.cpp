@@ -33,8 +33,12 @@ int run_scene_command(const SceneOptions& o) {
   }
   // What `run` does next: build the scene, so a file that passes here also starts there.
   try {
-    for (const std::string& note : scene::make_thorax_scene(params).setup_notes)
-      std::cout << o.file << ": note: " << note << '\n';
+    for (const std::string& note : scene::make_thorax_scene(params).setup_notes) {
+      if (note.starts_with(o.file + ":"))  // the file's own, at its line
+        std::cout << "note: " << note << '\n';
+      else
+        std::cout << o.file << ": note: " << note << '\n';
+    }
   } catch (const std::exception& e) {
     std::cerr << o.file << ": the scene cannot be built: " << e.what() << '\n';
     return 1;

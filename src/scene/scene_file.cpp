@@ -12,12 +12,16 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "math/edit_distance.hpp"
 #include "math/printable.hpp"
 #include "math/text_file.hpp"
 #include "scene/heart_series.hpp"
+#include "scene/scene_key_renames.hpp"
 #include "scene/scene_keys.hpp"
 #include "scene/solver_budget.hpp"
 #include "scene/toml_nesting.hpp"
@@ -90,7 +94,18 @@ struct Reader {
   const std::string& file;
   ThoraxSceneParams& params;
   std::vector<Problem> errors;
-  std::map<std::string, std::uint32_t> lines;  // line of each key given in the file
+  std::map<std::string, std::uint32_t> lines;                // line of each key given in the file
+  std::vector<std::pair<std::uint32_t, std::string>> notes;  // by line: "key ..."
+  // Old keys whose value converts once the whole file is read (it depends on other keys).
+  struct Pending {
+    const RenamedSceneKey* rename;
+    const SceneKey* key;
+    double value;
+    std::uint32_t line;
+  };
+  std::vector<Pending> pending;
+  std::vector<std::pair<const RenamedSceneKey*, std::uint32_t>> renamed;  // read, and where
+  std::set<std::string> given;  // keys given under their own names
 
   void add(std::uint32_t line, std::string text) {
     errors.push_back({line, std::move(text), {}, false});
@@ -161,7 +176,11 @@ struct Reader {
   }
 
   void error(const toml::node& node, const std::string& path, const std::string& what) {
-    add(node.source().begin.line, "key '" + shown_key(path) + "': " + what);
+    error_as(node, "'" + shown_key(path) + "'", what);
+  }
+  // `shown`: the key as the message names it, quoted.
+  void error_as(const toml::node& node, const std::string& shown, const std::string& what) {
+    add(node.source().begin.line, "key " + shown + ": " + what);
   }
 
   // An unknown key or table: its suggestion is looked up when the problem is reported.
@@ -204,72 +223,130 @@ struct Reader {
         .string();
   }
 
-  void read(const SceneKey& key, const toml::node& n) {
-    const std::string path(key.path);
-    lines[path] = n.source().begin.line;
+  // `shown`: the key as the file names it (an old name), for messages; empty: the key's own.
+  void read(const SceneKey& key, const toml::node& n, const std::string& shown = {}) {
+    lines[std::string(key.path)] = n.source().begin.line;
+    // How the file names it, in messages: 'key', or 'old' (now 'new').
+    const std::string path = shown.empty() ? "'" + shown_key(std::string(key.path)) + "'" : shown;
     std::visit(
         [&](auto ref) {
           using Ref = decltype(ref);
           if constexpr (std::is_same_v<Ref, RealRef>) {
             const auto v = number(n);
-            if (!v) return error(n, path, "expected a number in " + range(key));
+            if (!v) return error_as(n, path, "expected a number in " + range(key));
             if (!(*v >= key.min && *v <= key.max)) {
-              return error(n, path,
-                           "expected a number in " + range(key) + ", got " + real_text(*v));
+              return error_as(n, path,
+                              "expected a number in " + range(key) + ", got " + real_text(*v));
             }
             *ref(params) = Real(*v);
           } else if constexpr (std::is_same_v<Ref, CountRef> || std::is_same_v<Ref, SeedRef>) {
             const auto v = n.value<std::int64_t>();
             if (!n.is_integer() || !v)
-              return error(n, path, "expected an integer in " + range(key));
+              return error_as(n, path, "expected an integer in " + range(key));
             if (double(*v) < key.min || double(*v) > key.max) {
-              return error(n, path,
-                           "expected an integer in " + range(key) + ", got " + std::to_string(*v));
+              return error_as(
+                  n, path, "expected an integer in " + range(key) + ", got " + std::to_string(*v));
             }
             *ref(params) = static_cast<std::remove_reference_t<decltype(*ref(params))>>(*v);
           } else if constexpr (std::is_same_v<Ref, BoolRef>) {
-            if (!n.is_boolean()) return error(n, path, "expected true or false");
+            if (!n.is_boolean()) return error_as(n, path, "expected true or false");
             *ref(params) = *n.value<bool>();
           } else if constexpr (std::is_same_v<Ref, Vec3Ref>) {
             const auto v = vec3(n, key);
-            if (!v) return error(n, path, "expected [x, y, z], three numbers in " + range(key));
+            if (!v) return error_as(n, path, "expected [x, y, z], three numbers in " + range(key));
             *ref(params) = *v;
           } else if constexpr (std::is_same_v<Ref, ChoiceRef>) {
             std::string words;
             for (std::string_view c : key.choices)
               words += (words.empty() ? "\"" : " or \"") + std::string(c) + "\"";
             const auto v = n.value<std::string>();
-            if (!n.is_string() || !v) return error(n, path, "expected " + words);
+            if (!n.is_string() || !v) return error_as(n, path, "expected " + words);
             if (std::find(key.choices.begin(), key.choices.end(), *v) == key.choices.end())
-              return error(n, path, "expected " + words + ", got " + string_text(*v));
+              return error_as(n, path, "expected " + words + ", got " + string_text(*v));
             *ref(params) = *v;
           } else if constexpr (std::is_same_v<Ref, NameKeyRef>) {
             const auto v = n.value<std::string>();
             const std::string rule = "a name of " + std::to_string(int(key.min)) + " to " +
                                      std::to_string(int(key.max)) +
                                      " letters, digits, '.', '_' or '-'";
-            if (!n.is_string() || !v) return error(n, path, "expected " + rule);
+            if (!n.is_string() || !v) return error_as(n, path, "expected " + rule);
             const bool allowed = std::all_of(v->begin(), v->end(), [](char c) {
               return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' ||
                      c == '-';
             });
             if (!allowed || double(v->size()) < key.min || double(v->size()) > key.max)
-              return error(n, path, "expected " + rule + ", got " + string_text(*v));
+              return error_as(n, path, "expected " + rule + ", got " + string_text(*v));
             *ref.get(params) = *v;
           } else {
             const toml::array* a = n.as_array();
-            if (a == nullptr) return error(n, path, "expected an array of file names");
+            if (a == nullptr) return error_as(n, path, "expected an array of file names");
             std::vector<std::string> paths;
             for (std::size_t i = 0; i < a->size(); ++i) {
               const auto v = a->get(i)->value<std::string>();
               if (!a->get(i)->is_string() || !v || v->empty())
-                return error(n, path, "entry " + std::to_string(i) + " is not a file name");
+                return error_as(n, path, "entry " + std::to_string(i) + " is not a file name");
               paths.push_back(resolve(*v));
             }
             *ref(params) = paths;
           }
         },
         key.ref);
+  }
+
+  static const SceneKey& key_named(std::string_view path) {
+    for (const SceneKey& k : scene_keys())
+      if (k.path == path) return k;
+    throw std::logic_error("scene_key_renames.cpp names a key that does not exist");
+  }
+
+  // An old key: read under its new name now, or once the file is read when its value converts.
+  void read_renamed(const RenamedSceneKey& r, const toml::node& n) {
+    const SceneKey& key = key_named(r.new_path);
+    const std::uint32_t line = n.source().begin.line;
+    const std::string shown =
+        "'" + std::string(r.old_path) + "' (now '" + std::string(r.new_path) + "')";
+    renamed.emplace_back(&r, line);
+    if (r.conversion == KeyConversion::same) {
+      const std::size_t before = errors.size();
+      read(key, n, shown);
+      if (errors.size() == before)
+        notes.emplace_back(line, "key '" + std::string(r.old_path) + "' is now '" +
+                                     std::string(r.new_path) + "' (" + std::string(r.why) +
+                                     "); read as such");
+      return;
+    }
+    const std::optional<double> v = number(n);
+    if (!v || !(*v > 0) || !std::isfinite(*v))
+      return error_as(n, shown, "expected a length in metres above 0");
+    pending.push_back({&r, &key, *v, line});
+  }
+
+  // After the whole file: converted values, and an old name given beside its new one.
+  void finish_renamed() {
+    for (const Pending& p : pending) {
+      const Real unit = p.rename->conversion == KeyConversion::per_ima_fat_gap
+                            ? params.anatomy.ima_depth - params.patch.vessel.radius
+                            : params.anatomy.fat_thickness;
+      const double v = p.value / double(unit);
+      const std::string old_path(p.rename->old_path), new_path(p.rename->new_path);
+      if (!(unit > 0) || !(v >= p.key->min && v <= p.key->max)) {
+        add(p.line, "key '" + old_path + "' (now '" + new_path + "', " +
+                        std::string(p.rename->why) + "): " + real_text(p.value) + " m is " +
+                        real_text(v) + " of " + real_text(double(unit)) + " m, outside " +
+                        range(*p.key));
+        continue;
+      }
+      *std::get<RealRef>(p.key->ref)(params) = Real(v);
+      lines[new_path] = p.line;
+      notes.emplace_back(p.line, "key '" + old_path + "' is now '" + new_path + "' (" +
+                                     std::string(p.rename->why) + "); " + real_text(p.value) +
+                                     " m read as " + real_text(v));
+    }
+    for (const auto& [r, line] : renamed) {
+      if (given.count(std::string(r->new_path)) > 0)
+        add(line, "key '" + std::string(r->old_path) + "' is the old name of '" +
+                      std::string(r->new_path) + "', which the file also gives: keep one");
+    }
   }
 
   void walk(const toml::table& table, const std::string& prefix) {
@@ -294,9 +371,17 @@ struct Reader {
         if (candidate.path == path) key = &candidate;
       }
       if (key == nullptr) {
-        unknown(node, path, false, "key '" + shown_key(path) + "': unknown key");
+        if (const RenamedSceneKey* renamed_key = find_renamed_scene_key(path)) {
+          read_renamed(*renamed_key, node);
+        } else if (const RetiredSceneKey* retired = find_retired_scene_key(path)) {
+          add(node.source().begin.line,
+              "key '" + path + "' was retired; instead: " + std::string(retired->instead));
+        } else {
+          unknown(node, path, false, "key '" + shown_key(path) + "': unknown key");
+        }
         continue;
       }
+      given.insert(path);
       read(*key, node);
     }
   }
@@ -354,10 +439,17 @@ ThoraxSceneParams parse_scene(const std::string& text, const std::string& name) 
     throw SceneFileError({shown_file + ":" + std::to_string(e.source().begin.line) + ": " +
                           printable(e.description(), kShownDescriptionBytes)});
   }
-  Reader reader{name, params, {}, {}};
+  Reader reader{name, params, {}, {}, {}, {}, {}, {}};
   reader.walk(table, "");
+  reader.finish_renamed();
   if (reader.errors.empty()) reader.check_whole();
-  if (reader.errors.empty()) return params;
+  if (reader.errors.empty()) {
+    std::stable_sort(reader.notes.begin(), reader.notes.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [line, note] : reader.notes)
+      params.file_notes.push_back(shown_file + ":" + std::to_string(line) + ": " + note);
+    return params;
+  }
   // toml++ visits keys in sorted order; report in file order.
   std::stable_sort(reader.errors.begin(), reader.errors.end(),
                    [](const Problem& x, const Problem& y) { return x.line < y.line; });

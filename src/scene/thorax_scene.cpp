@@ -74,6 +74,7 @@ Real lowest_free_particle_y(const tissue::TissueWorld& w) {
 
 ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   ThoraxScene scene;
+  scene.setup_notes = params.file_notes;
   scene.patient = vary_anatomy(params.anatomy);
   scene.layout = layout_thorax(scene.patient, params.heart.long_axis, params.heart.lateral);
   scene.patch = tissue::make_thoracic_patch(lay_out_patch(params, scene.patient, scene.layout));

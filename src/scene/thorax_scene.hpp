@@ -36,6 +36,9 @@ struct ThoraxSceneParams {
   std::vector<Port> ports;          // camera, left and right instrument, assistant
   Vec3 port_target = Vec3::Zero();  // where the ports aim (unit: m)
   ConsoleSettings console = default_console_settings();  // forces, safety, devices
+  // What reading the scene file said that is not an error, "FILE:LINE: ..." (an old key read
+  // under its new name); make_thorax_scene passes them on as setup notes.
+  std::vector<std::string> file_notes;
 };
 
 ThoraxSceneParams default_thorax_scene_params();
