@@ -1,6 +1,7 @@
 // libFuzzer target: recorded input streams (console/input_stream.hpp). Any bytes are either
 // refused with InputStreamError or give steps whose text written back reads back to the same
-// text (a replay file is exact), with finite poses and powers in range.
+// text (a replay file is exact), with finite poses and powers in range; its origin lines
+// (console/stream_origin.hpp) likewise.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +14,18 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace imasim;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
+  // The origin lines: refused, or an origin that written back reads back the same.
+  try {
+    const console::StreamHead head = console::read_stream_head(text, "fuzz.stream");
+    if (head.origin) {
+      const console::StreamHead again =
+          console::read_stream_head(console::format_stream_origin(*head.origin), "again");
+      fuzz::require(
+          again.origin && console::origin_differences(*head.origin, *again.origin).empty(),
+          "an origin written back does not read back the same");
+    }
+  } catch (const console::InputStreamError&) {
+  }
   std::vector<session::SessionInput> steps;
   try {
     steps = console::parse_input_stream(text, "fuzz.stream");

@@ -14,11 +14,13 @@
 #include "cli_checks.hpp"
 #include "console/console_settings_use.hpp"
 #include "console/input_stream.hpp"
+#include "console/stream_origin.hpp"
 #include "interrupt.hpp"
 #include "live_inputs.hpp"
 #include "math/state_hash.hpp"
 #include "metrics/event_csv.hpp"
 #include "metrics/threshold_file.hpp"
+#include "replay_origin.hpp"
 #include "report.hpp"
 #include "run_progress.hpp"
 #include "run_recording.hpp"
@@ -137,6 +139,9 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   cmd->add_option("--replay", opt->replay_file,
                   "Replay a recorded input stream (--record-input) step by step")
       ->check(non_empty());
+  cmd->add_flag("--replay-anyway", opt->replay_anyway,
+                "Replay a stream recorded under another program, scene, patient, heart mode or "
+                "solver, or one cut short (said on stderr); its state will differ");
   cmd->add_option("--record-input", opt->record_input_file,
                   "Write every step's input here (replayable with --replay)")
       ->check(non_empty());
@@ -219,10 +224,20 @@ int run_run_command(const RunOptions& o) {
                  "spacemouse, ...)\n";
     return 2;
   }
+  if (o.replay_anyway && o.replay_file.empty()) {
+    std::cerr << "imasim run: --replay-anyway goes with --replay\n";
+    return 2;
+  }
+  const console::StreamOrigin origin = console::stream_origin_of(params, IMASIM_VERSION);
   std::optional<std::vector<session::SessionInput>> replay;
   if (!o.replay_file.empty()) {
     try {
-      replay = console::load_input_stream(o.replay_file);
+      console::RecordedStream recorded = console::load_recorded_stream(o.replay_file);
+      const ReplayVerdict verdict = check_replay(recorded, o.replay_file, origin, o.replay_anyway);
+      for (const std::string& line : verdict.lines)
+        std::cerr << "imasim run: " << line << '\n';
+      if (verdict.refused) return 2;
+      replay = std::move(recorded.steps);
     } catch (const console::InputStreamError& e) {
       std::cerr << e.what() << '\n';
       return 2;
@@ -298,7 +313,8 @@ int run_run_command(const RunOptions& o) {
     try {
       const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, events_file};
       record_out.emplace(o.record_input_file, "the input stream", inputs);
-      record_out->write("# imasim input stream v1: one line a 5 ms step (docs/haptics.md)\n");
+      record_out->write("# imasim input stream v2: one line a 5 ms step (docs/haptics.md)\n" +
+                        console::format_stream_origin(origin));
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
@@ -359,7 +375,12 @@ int run_run_command(const RunOptions& o) {
   if (autopilot && !seconds_given) seconds = autopilot->end_time() + 0.5;
   if (replay) {
     const double recorded = double(replay->size()) * double(w.model.solver.dt);
-    seconds = seconds_given ? std::min(seconds, recorded) : recorded;
+    if (seconds_given && seconds > recorded + 0.5 * double(w.model.solver.dt)) {
+      std::cerr << "imasim run: " << o.replay_file << " holds " << recorded << " s ("
+                << replay->size() << " steps); --seconds " << seconds << " asks for more\n";
+      return 2;
+    }
+    seconds = seconds_given ? seconds : recorded;
   }
   std::unique_ptr<LiveInputs> live_inputs;
   if (live) {
@@ -408,6 +429,7 @@ int run_run_command(const RunOptions& o) {
   physics::ProfileTotals profile;
   std::uint64_t done = 0;
   std::optional<std::string> output_failure;
+  std::uint64_t inputs_recorded = 0;  // lines of the input stream, for its end line
   install_interrupt_handlers();
   RunProgress progress("imasim run", seconds, double(w.model.solver.dt), o.progress, std::cerr);
   for (; done < steps && interrupt_signal() == 0; ++done) {
@@ -424,6 +446,7 @@ int run_run_command(const RunOptions& o) {
     if (record_out) {
       try {
         record_out->write(console::format_input_line(done, input) + '\n');
+        ++inputs_recorded;
         record_out->flush_if_due();
       } catch (const metrics::OutputError& e) {
         output_failure = e.what();
@@ -474,6 +497,7 @@ int run_run_command(const RunOptions& o) {
   if (live_inputs) device_report = live_inputs->finish();
   if (record_out && !output_failure) {
     try {
+      record_out->write(console::format_stream_end(inputs_recorded));
       record_out->close();
     } catch (const metrics::OutputError& e) {
       output_failure = e.what();

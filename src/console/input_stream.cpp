@@ -210,4 +210,13 @@ std::vector<session::SessionInput> load_input_stream(const std::string& path) {
   return parse_input_stream(file.text, path);
 }
 
+RecordedStream load_recorded_stream(const std::string& path) {
+  const TextFile file = read_text_file(path, kMaxStreamBytes, "input stream");
+  if (!file.error.empty()) throw InputStreamError(path + ": " + file.error);
+  RecordedStream s;
+  s.head = read_stream_head(file.text, path);
+  s.steps = parse_input_stream(file.text, path);
+  return s;
+}
+
 }  // namespace imasim::console

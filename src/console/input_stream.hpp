@@ -7,7 +7,8 @@
 //               <pedal off|cut|coag> <power W>
 //   camera: <optics rad> <insertion m or -> <roll rad or ->
 //   lost: the steps on which a hand's device (or the pedal's, for the right) was gone
-// Lines starting with '#' are comments. Reading checks everything up front and throws
+// Lines starting with '#' are comments; "#!" lines say where the stream came from and where it
+// ends (console/stream_origin.hpp). Reading checks everything up front and throws
 // InputStreamError ("PATH:LINE: message").
 #include <cstdio>
 #include <stdexcept>
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "console/stream_origin.hpp"
 #include "session/surgical_session.hpp"
 
 namespace imasim::console {
@@ -31,5 +33,12 @@ std::string format_input_line(std::uint64_t step, const session::SessionInput& i
 std::vector<session::SessionInput> parse_input_stream(std::string_view text,
                                                       const std::string& path);
 std::vector<session::SessionInput> load_input_stream(const std::string& path);
+
+// A recorded stream with what its "#!" lines say of its origin and its end (stream_origin.hpp).
+struct RecordedStream {
+  StreamHead head;
+  std::vector<session::SessionInput> steps;
+};
+RecordedStream load_recorded_stream(const std::string& path);
 
 }  // namespace imasim::console
