@@ -173,6 +173,48 @@ TEST(CliExperiment, CtrlCStillWritesTheReportOfWhatFinished) {
   EXPECT_EQ(results["trials"][1]["reason"], "interrupted (the study was stopped)");
 }
 
+// A study killed with SIGKILL left its running trial an orphan that went on (and wrote its
+// records); its rerun redid every trial. Now the trial dies with the study, and the rerun keeps
+// the trial that finished (its manifest and files unchanged) and runs only the other: the records
+// hold each trial once.
+TEST(CliExperiment, AKilledStudyLeavesNoOrphanAndItsRerunKeepsWhatFinished) {
+  const std::string out = kDir + "imasim_study_killed";
+  const std::string second = out + "/trials/static-02.log";
+  std::filesystem::remove_all(out);
+  const std::string args =
+      "--trials 2 --modes static --script " + kScript + " --seconds 2 --jobs 1 --out " + out;
+  const Finished killed = experiment(
+      args,
+      "for i in $(seq 600); do [ -e " + second +
+          " ] && break; sleep 0.1; done; C=$(pgrep -P $P | head -n 1); kill -9 $P; sleep 0.5; "
+          "S=$(awk \"/^State/{print \\$2}\" /proc/$C/status 2>/dev/null); "
+          "if [ -z \"$S\" ] || [ \"$S\" = Z ]; then echo orphan=gone; "
+          "else echo orphan=alive; kill -9 $C; fi",
+      "imasim_study_killed");
+  EXPECT_EQ(exit_status(killed), 137) << killed.out << killed.err;
+  EXPECT_NE(killed.out.find("orphan=gone"), std::string::npos) << killed.out;
+  ASSERT_TRUE(std::filesystem::exists(out + "/trials/static-01.done.json"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/trials/static-02.done.json"));
+
+  // The rerun, on the same records (the helper starts each study with records of its own).
+  const std::string db = kDir + "imasim_study_killed.sqlite";
+  const std::string err = kDir + "imasim_study_killed_rerun.err";
+  const Finished rerun = imasim::test::run_shell(
+      std::string(IMASIM_EXE) + " experiment " + args + " --db " + db + " --json 2>" + err, err);
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_NE(rerun.err.find("1 of 2 trials kept from an earlier run of this study in " + out),
+            std::string::npos)
+      << rerun.err;
+  const nlohmann::json summary = nlohmann::json::parse(rerun.out);
+  EXPECT_EQ(summary["trials_kept"], 1);
+  EXPECT_EQ(summary["trials_ok"], 2);
+  const Finished history =
+      imasim::test::run_shell(std::string(IMASIM_EXE) + " history --db " + db + " --json", err);
+  const nlohmann::json h = nlohmann::json::parse(history.out);
+  ASSERT_EQ(h["trainees"].size(), 1u) << history.out;
+  EXPECT_EQ(h["trainees"][0]["sessions"].size(), 2u);  // one per trial
+}
+
 TEST(CliExperiment, BadRequestsAreRefusedWithAMessage) {
   const Finished twice = experiment("--trials 2 --modes dynamic,dynamic --script " + kScript +
                                         " --out " + kDir + "imasim_study_bad",

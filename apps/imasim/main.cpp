@@ -5,8 +5,10 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "spawn_self.hpp"
 
 int main(int argc, char** argv) {
+  imasim::cli::die_with_parent();
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
   const imasim::cli::Commands commands = imasim::cli::add_commands(app);
   // No subcommand: the window on the default scene where there is a display, else how to run

@@ -12,6 +12,7 @@
 #include "study_progress.hpp"
 #include "study_records.hpp"
 #include "surgery/input_script.hpp"
+#include "trial_manifest.hpp"
 #include "trial_processes.hpp"
 
 namespace imasim::cli {
@@ -141,16 +142,44 @@ StudyOutcome run_study(const StudyRequest& r) {
     return outcome;
   }
   const std::vector<TrialPlan> plans = plan_trials(r.modes, r.trials, r.seed, r.out_dir);
+  // A trial an earlier run of this study finished, its files unchanged, is kept; the rest run.
+  std::vector<TrialExit> exits(plans.size());
+  std::vector<std::vector<std::string>> arguments;
+  std::vector<std::size_t> to_run;
   std::vector<TrialProcess> processes;
-  for (const TrialPlan& p : plans)
-    processes.push_back({trial_arguments(p, r.op), p.report, p.log});
-
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    arguments.push_back(trial_arguments(plans[i], r.op));
+    if (const std::optional<double> wall = kept_trial(plans[i], arguments[i])) {
+      exits[i].end = TrialExit::End::exited;
+      exits[i].exit_code = 0;
+      exits[i].wall_s = *wall;
+      ++outcome.trials_kept;
+      continue;
+    }
+    std::filesystem::remove(manifest_path(plans[i]), ec);  // a failed rerun must not look kept
+    to_run.push_back(i);
+    processes.push_back({arguments[i], plans[i].report, plans[i].log});
+  }
+  if (outcome.trials_kept > 0)
+    std::cerr << r.who << ": " << outcome.trials_kept << " of " << plans.size()
+              << " trials kept from an earlier run of this study in " << r.out_dir
+              << " (their files unchanged); running the other " << to_run.size() << '\n';
   install_interrupt_handlers();
   StudyProgress progress(r.progress, std::cerr);
-  const std::vector<TrialExit> exits = run_trial_processes(
-      processes, jobs, r.trial_timeout_s, [&](const TrialCounts& c) { progress.update(c); });
+  // Each trial's manifest as it ends: a study killed later keeps what finished.
+  const auto keep = [&](std::size_t k, const TrialExit& e) {
+    if (!e.ok()) return;
+    try {
+      write_trial_manifest(plans[to_run[k]], arguments[to_run[k]], e.wall_s);
+    } catch (const metrics::OutputError& error) {
+      std::cerr << r.who << ": note: the trial will run again in a rerun: " << error.what() << '\n';
+    }
+  };
+  const std::vector<TrialExit> ran = run_trial_processes(
+      processes, jobs, r.trial_timeout_s, [&](const TrialCounts& c) { progress.update(c); }, keep);
   progress.finish();
-
+  for (std::size_t k = 0; k < to_run.size(); ++k)
+    exits[to_run[k]] = ran[k];
   for (std::size_t i = 0; i < plans.size(); ++i)
     outcome.trials.push_back(trial_result(plans[i], exits[i], r));
   outcome.summary = report::summarize_study(r.modes, outcome.trials);
@@ -179,6 +208,7 @@ nlohmann::ordered_json study_summary_json(const StudyOutcome& o) {
   j["results"] = o.files.results_json;
   j["trials_csv"] = o.files.trials_csv;
   j["trials"] = o.trials.size();
+  j["trials_kept"] = o.trials_kept;
   j["trials_ok"] = o.summary.trials_ok;
   j["trials_failed"] = o.summary.trials_failed;
   const report::SaiComparison& headline = report::headline_sai(o.summary);

@@ -34,6 +34,8 @@ struct StudyOutcome {
   std::vector<report::TrialResult> trials;
   report::StudySummary summary;
   report::StudyFiles files;
+  // Trials kept from an earlier run of the study in the same folder (trial_manifest.hpp).
+  std::size_t trials_kept = 0;
 };
 
 StudyOutcome run_study(const StudyRequest& request);

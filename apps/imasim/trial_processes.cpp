@@ -66,9 +66,10 @@ std::string TrialExit::describe(double timeout_s) const {
   return "unknown";
 }
 
-std::vector<TrialExit> run_trial_processes(const std::vector<TrialProcess>& trials, int jobs,
-                                           double timeout_s,
-                                           const std::function<void(const TrialCounts&)>& on_poll) {
+std::vector<TrialExit> run_trial_processes(
+    const std::vector<TrialProcess>& trials, int jobs, double timeout_s,
+    const std::function<void(const TrialCounts&)>& on_poll,
+    const std::function<void(std::size_t, const TrialExit&)>& on_finished) {
   std::vector<TrialExit> exits(trials.size());
   std::vector<Running> running;
   std::size_t next = 0;
@@ -78,6 +79,7 @@ std::vector<TrialExit> run_trial_processes(const std::vector<TrialProcess>& tria
     if (!e.ok()) ++counts.failed;
     ++counts.finished;
     exits[index] = std::move(e);
+    if (on_finished) on_finished(index, exits[index]);
   };
   while (next < trials.size() || !running.empty()) {
     const bool stopping = interrupt_signal() != 0;

@@ -37,9 +37,12 @@ struct TrialCounts {
 inline constexpr double kInterruptGraceSeconds = 10;
 
 // `timeout_s` <= 0: no limit. `on_poll` is called every poll (about 20 times a second) and after
-// each change, with the counts so far (failed: any end but exit status 0).
-std::vector<TrialExit> run_trial_processes(const std::vector<TrialProcess>& trials, int jobs,
-                                           double timeout_s,
-                                           const std::function<void(const TrialCounts&)>& on_poll);
+// each change, with the counts so far (failed: any end but exit status 0); `on_finished`, if
+// given, as each trial ends, with its index and how (so that what finished is kept should the
+// study itself be killed).
+std::vector<TrialExit> run_trial_processes(
+    const std::vector<TrialProcess>& trials, int jobs, double timeout_s,
+    const std::function<void(const TrialCounts&)>& on_poll,
+    const std::function<void(std::size_t, const TrialExit&)>& on_finished = {});
 
 }  // namespace imasim::cli
