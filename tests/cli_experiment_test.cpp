@@ -215,6 +215,36 @@ TEST(CliExperiment, AKilledStudyLeavesNoOrphanAndItsRerunKeepsWhatFinished) {
   EXPECT_EQ(h["trainees"][0]["sessions"].size(), 2u);  // one per trial
 }
 
+// `render --frames 100000` at 8192x8192 began about two days and terabytes of work without a
+// word, `experiment --trials 1000 --seconds 3600` two thousand hour-long trials. Long jobs say
+// their cost and wait for --yes above an hour or 10 GB; small ones say it and go on.
+TEST(CliExperiment, LongJobsSayTheirCostAndWaitForYes) {
+  const std::string render_out = kDir + "imasim_huge_render", study_out = kDir + "imasim_huge";
+  std::filesystem::remove_all(render_out);
+  std::filesystem::remove_all(study_out);
+  const std::string err = kDir + "imasim_long_jobs.err";
+  const Finished render = imasim::test::run_shell(
+      std::string(IMASIM_EXE) + " render --frames 100000 --width 8192 --height 8192 --out " +
+          render_out + " 2>" + err,
+      err);
+  EXPECT_EQ(render.exit_code, 2);
+  EXPECT_NE(render.err.find("imasim render: 100000 frames of 8192x8192: about "), std::string::npos)
+      << render.err;
+  EXPECT_NE(render.err.find("TB of work"), std::string::npos) << render.err;
+  EXPECT_NE(render.err.find("add --yes to start it"), std::string::npos) << render.err;
+  EXPECT_FALSE(std::filesystem::exists(render_out));  // nothing begun
+  const Finished study = imasim::test::run_shell(
+      std::string(IMASIM_EXE) + " experiment --trials 1000 --modes dynamic,static --seconds 3600 " +
+          "--jobs 2 --no-db --out " + study_out + " 2>" + err,
+      err);
+  EXPECT_EQ(study.exit_code, 2);
+  EXPECT_NE(study.err.find("imasim experiment: 2000 trials of 3600 s, 2 at once: about 850 h"),
+            std::string::npos)
+      << study.err;
+  EXPECT_NE(study.err.find("add --yes to start it"), std::string::npos) << study.err;
+  EXPECT_FALSE(std::filesystem::exists(study_out));
+}
+
 TEST(CliExperiment, BadRequestsAreRefusedWithAMessage) {
   const Finished twice = experiment("--trials 2 --modes dynamic,dynamic --script " + kScript +
                                         " --out " + kDir + "imasim_study_bad",

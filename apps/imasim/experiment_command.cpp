@@ -1,10 +1,15 @@
 #include "experiment_command.hpp"
 
+#include <algorithm>
 #include <iostream>
+#include <sstream>
+#include <thread>
 
 #include "cli_checks.hpp"
+#include "job_estimate.hpp"
 #include "report.hpp"
 #include "study_records.hpp"
+#include "surgery/input_script.hpp"
 
 namespace imasim::cli {
 
@@ -13,6 +18,14 @@ namespace {
 // A study of a thousand trials per mode is days of computing: more is a typing error.
 constexpr int kMaxTrials = 1000;
 constexpr double kMaxTrialSeconds = 3600;  // as `run --seconds`
+// The scripted operator's harvest at its defaults (docs/autopilot.md) (unit: s).
+constexpr double kAutopilotHarvestSeconds = 131;
+
+std::string shortest_seconds(double s) {
+  std::ostringstream out;
+  out << s;
+  return out.str();
+}
 
 }  // namespace
 
@@ -56,6 +69,7 @@ std::shared_ptr<ExperimentOptions> add_experiment_command(CLI::App& app) {
                 "Show the progress bar on stderr even when it is not a terminal");
   add_study_records_options(*cmd, r.op);
   cmd->add_flag("--json", opt->json, "Print the summary as one JSON object on stdout");
+  cmd->add_flag("--yes", opt->yes, "Start even when the estimate is over an hour or 10 GB");
   return opt;
 }
 
@@ -68,6 +82,25 @@ int run_experiment_command(const ExperimentOptions& o) {
         return 2;
       }
   if (o.seconds > 0) r.op.seconds = o.seconds;
+  // Each trial's simulated time: --seconds, else the script's, else the scripted operator's
+  // harvest at its defaults (docs/autopilot.md).
+  double trial_s = kAutopilotHarvestSeconds;
+  if (r.op.seconds) {
+    trial_s = *r.op.seconds;
+  } else if (!r.op.script_file.empty()) {
+    try {
+      trial_s = surgery::load_input_script(r.op.script_file).end_time() + 0.5;
+    } catch (const surgery::InputScriptError&) {
+      // run_study says what is wrong with it
+    }
+  }
+  const int jobs = r.jobs > 0 ? r.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
+  const std::uint64_t trials = std::uint64_t(r.trials) * r.modes.size();
+  if (!confirm_job("imasim experiment",
+                   std::to_string(trials) + " trials of " + shortest_seconds(trial_s) + " s, " +
+                       std::to_string(jobs) + " at once",
+                   study_estimate(trials, trial_s, jobs), o.yes, std::cerr))
+    return 2;
   const StudyOutcome outcome = run_study(r);
   if (outcome.exit_code == 2 || outcome.exit_code == 4) return outcome.exit_code;
   if (o.json) {

@@ -14,6 +14,7 @@ struct ExperimentOptions {
   StudyRequest request;
   double seconds = 0;  // with --script; 0 (not given): the run's default
   bool json = false;
+  bool yes = false;  // start even when the estimate is over an hour or 10 GB
 };
 
 std::shared_ptr<ExperimentOptions> add_experiment_command(CLI::App& app);

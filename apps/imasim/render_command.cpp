@@ -8,6 +8,7 @@
 
 #include "cli_checks.hpp"
 #include "command_inputs.hpp"
+#include "job_estimate.hpp"
 #include "physics/executor.hpp"
 #include "render/camera.hpp"
 #include "render/frame_of_session.hpp"
@@ -46,6 +47,7 @@ std::shared_ptr<RenderOptions> add_render_command(CLI::App& app) {
   cmd->add_flag("--key-colours", opt->key_colours,
                 "Each tissue in its flat key colour, unlit (docs/rendering.md)");
   cmd->add_flag("--json", opt->json, "Print a JSON summary");
+  cmd->add_flag("--yes", opt->yes, "Start even when the estimate is over an hour or 10 GB");
   return opt;
 }
 
@@ -55,6 +57,13 @@ int run_render_command(const RenderOptions& o) {
   if (!load_scene_params(o.scene_file, params) || !load_script(o.script_file, script)) return 2;
   if (o.static_heart) params.playback.beating = false;
   if (o.patient_seed) params.anatomy.patient_seed = *o.patient_seed;
+  if (!confirm_job("imasim render",
+                   std::to_string(o.frames) + " frames of " + std::to_string(o.width) + "x" +
+                       std::to_string(o.height),
+                   render_estimate(std::uint64_t(o.frames), std::uint64_t(o.width),
+                                   std::uint64_t(o.height), o.fps),
+                   o.yes, std::cerr))
+    return 2;
   std::error_code ec;
   std::filesystem::create_directories(o.out_dir, ec);
   if (ec || !std::filesystem::is_directory(o.out_dir)) {

@@ -24,6 +24,7 @@ struct RenderOptions {
   std::string stereo = "none";
   bool key_colours = false;  // each look in its flat key colour, unlit
   bool json = false;
+  bool yes = false;  // start even when the estimate is over an hour or 10 GB
 };
 
 std::shared_ptr<RenderOptions> add_render_command(CLI::App& app);
