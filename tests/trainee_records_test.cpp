@@ -255,6 +255,52 @@ TEST(TraineeRecords, ALockedDatabaseHoldsTheSessionPendingAndTheNextOpeningAddsI
   EXPECT_TRUE(r.pending.empty());
 }
 
+// A study's trials open the records at once: a held session is added by one of them, once.
+TEST(TraineeRecords, TwoProcessesOpeningAtOnceAddAHeldSessionOnce) {
+  const std::string path = fresh_path("held_once.sqlite");
+  {
+    TraineeRecords records(path, kAppend);
+    imasim::metrics::SqliteDatabase other(path, SQLITE_OPEN_READWRITE, 1000);
+    other.execute("BEGIN IMMEDIATE", "another process's write");
+    ASSERT_FALSE(records.append_or_hold(example_session("c", "2025-03-03T10:00:00Z", 2), 100)
+                     .pending.empty());
+    other.execute("ROLLBACK", "another process's write");
+  }
+  for (int round = 0; round < 2; ++round) {
+    int go[2];
+    ASSERT_EQ(pipe(go), 0);
+    std::vector<pid_t> children;
+    for (int k = 0; k < 2; ++k) {
+      const pid_t pid = fork();
+      ASSERT_GE(pid, 0);
+      if (pid == 0) {
+        close(go[1]);
+        char byte = 0;
+        (void)!read(go[0], &byte, 1);
+        try {
+          TraineeRecords records(path, kAppend);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "child: %s\n", e.what());
+          _exit(1);
+        }
+        _exit(0);
+      }
+      children.push_back(pid);
+    }
+    close(go[0]);
+    close(go[1]);
+    for (const pid_t pid : children) {
+      int status = 0;
+      ASSERT_EQ(waitpid(pid, &status, 0), pid);
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+    }
+  }
+  EXPECT_EQ(TraineeRecords(path, kRead).sessions().size(), 1u);
+  for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
+    EXPECT_EQ(entry.path().filename().string().find("held_once.sqlite.pending-"), std::string::npos)
+        << entry.path();
+}
+
 TEST(TraineeRecords, ANewerSchemaOrAnotherProgramsDatabaseIsRefused) {
   const std::string newer = fresh_path("newer.sqlite");
   {

@@ -388,23 +388,34 @@ void TraineeRecords::import_pending() {
   std::sort(files.begin(), files.end());
   for (const fs::path& file : files) {
     std::vector<SessionRecord> held;
+    const std::string claimed = file.string() + ".claimed";
     try {
-      held = TraineeRecords(file.string(), Access::read_only).sessions();
+      // Under the records' write lock, so that two processes opening them at once take turns:
+      // the second finds the file gone.
       Transaction t(*db_);
+      if (!fs::exists(file, ec)) continue;
+      held = TraineeRecords(file.string(), Access::read_only).sessions();
       for (const SessionRecord& s : held) {
         check_session(s, file.string());
         insert_session(s);
       }
-      t.commit();
+      // Claimed before the commit, given back if it fails: never imported twice, never lost.
+      fs::rename(file, claimed, ec);
+      if (ec) throw RecordsError(file.string() + ": cannot claim it: " + ec.message());
+      try {
+        t.commit();
+      } catch (const RecordsError&) {
+        fs::rename(claimed, file, ec);
+        throw;
+      }
     } catch (const RecordsBusy&) {
       return;  // locked now: the next append-mode open tries again
     } catch (const RecordsError& e) {
       notes_.push_back(std::string("a held session file is left as it is: ") + e.what());
       continue;
     }
-    // Committed: the file goes (a crash just here would import it twice, never lose it).
-    for (const char* tail : {"", "-wal", "-shm"})
-      fs::remove(file.string() + tail, ec);
+    for (const std::string& gone : {claimed, file.string() + "-wal", file.string() + "-shm"})
+      fs::remove(gone, ec);
     ++imported_;
     notes_.push_back(std::to_string(held.size()) + " held session(s) from " + file.string() +
                      " added to the trainee records");
