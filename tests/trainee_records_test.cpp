@@ -117,6 +117,38 @@ std::string message_of(const std::function<void()>& f) {
   return "(no error)";
 }
 
+// Runs `work(k)` in two child processes started together (k = 0, 1) and expects both to exit 0;
+// a child that throws says why on stderr.
+void in_two_processes_at_once(const std::function<void(int)>& work) {
+  int go[2];
+  ASSERT_EQ(pipe(go), 0);
+  std::vector<pid_t> children;
+  for (int k = 0; k < 2; ++k) {
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      close(go[1]);
+      char byte = 0;
+      (void)!read(go[0], &byte, 1);  // both start together: the parent closes the pipe
+      try {
+        work(k);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "child %d: %s\n", k, e.what());
+        _exit(1);
+      }
+      _exit(0);
+    }
+    children.push_back(pid);
+  }
+  close(go[0]);
+  close(go[1]);
+  for (const pid_t pid : children) {
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  }
+}
+
 TEST(TraineeRecords, ASessionReadsBackExactlyWithItsMetricsInOrder) {
   const std::string path = fresh_path("exact.sqlite");
   const SessionRecord written = example_session("José Álvarez", "2025-03-01T14:05:09Z", 0);
@@ -138,36 +170,13 @@ TEST(TraineeRecords, ASessionReadsBackExactlyWithItsMetricsInOrder) {
 TEST(TraineeRecords, TwoProcessesAppendingAtOnceLoseNoSession) {
   const std::string path = fresh_path("concurrent.sqlite");
   constexpr int kEach = 50;
-  int go[2];
-  ASSERT_EQ(pipe(go), 0);
-  std::vector<pid_t> children;
-  for (const char* trainee : {"first", "second"}) {
-    const pid_t pid = fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      close(go[1]);
-      char byte = 0;
-      (void)!read(go[0], &byte, 1);  // both start together: the parent closes the pipe
-      try {
-        // Both create the database at once, then append.
-        TraineeRecords records(path, kAppend);
-        for (int k = 0; k < kEach; ++k)
-          records.append_session(example_session(trainee, "2025-03-01T14:05:09Z", k));
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "child %s: %s\n", trainee, e.what());
-        _exit(1);
-      }
-      _exit(0);
-    }
-    children.push_back(pid);
-  }
-  close(go[0]);
-  close(go[1]);
-  for (const pid_t pid : children) {
-    int status = 0;
-    ASSERT_EQ(waitpid(pid, &status, 0), pid);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
-  }
+  in_two_processes_at_once([&](int k) {
+    // Both create the database at once, then append.
+    const char* trainee = k == 0 ? "first" : "second";
+    TraineeRecords records(path, kAppend);
+    for (int n = 0; n < kEach; ++n)
+      records.append_session(example_session(trainee, "2025-03-01T14:05:09Z", n));
+  });
   const TraineeRecords records(path, kRead);
   EXPECT_EQ(records.sessions().size(), 2u * kEach);
   for (const char* trainee : {"first", "second"}) {
@@ -266,35 +275,8 @@ TEST(TraineeRecords, TwoProcessesOpeningAtOnceAddAHeldSessionOnce) {
                      .pending.empty());
     other.execute("ROLLBACK", "another process's write");
   }
-  for (int round = 0; round < 2; ++round) {
-    int go[2];
-    ASSERT_EQ(pipe(go), 0);
-    std::vector<pid_t> children;
-    for (int k = 0; k < 2; ++k) {
-      const pid_t pid = fork();
-      ASSERT_GE(pid, 0);
-      if (pid == 0) {
-        close(go[1]);
-        char byte = 0;
-        (void)!read(go[0], &byte, 1);
-        try {
-          TraineeRecords records(path, kAppend);
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "child: %s\n", e.what());
-          _exit(1);
-        }
-        _exit(0);
-      }
-      children.push_back(pid);
-    }
-    close(go[0]);
-    close(go[1]);
-    for (const pid_t pid : children) {
-      int status = 0;
-      ASSERT_EQ(waitpid(pid, &status, 0), pid);
-      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
-    }
-  }
+  for (int round = 0; round < 2; ++round)
+    in_two_processes_at_once([&](int) { TraineeRecords records(path, kAppend); });
   EXPECT_EQ(TraineeRecords(path, kRead).sessions().size(), 1u);
   for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path()))
     EXPECT_EQ(entry.path().filename().string().find("held_once.sqlite.pending-"), std::string::npos)
