@@ -171,6 +171,24 @@ TEST(CliExperiment, CtrlCStillWritesTheReportOfWhatFinished) {
   EXPECT_EQ(results["trials"][0]["status"], "ok");
   EXPECT_EQ(results["trials"][1]["status"], "failed");
   EXPECT_EQ(results["trials"][1]["reason"], "interrupted (the study was stopped)");
+  // The interrupted trial left the trainee records alone; the rerun runs it and records it: the
+  // records hold each trial once (they held the interrupted one too, and then the rerun's).
+  const std::string db = kDir + "imasim_study_interrupted.sqlite";
+  const std::string err = kDir + "imasim_study_interrupted_rerun.err";
+  auto sessions = [&] {
+    const Finished history =
+        imasim::test::run_shell(std::string(IMASIM_EXE) + " history --db " + db + " --json", err);
+    const nlohmann::json h = nlohmann::json::parse(history.out);
+    return h["trainees"].empty() ? std::size_t(0) : h["trainees"][0]["sessions"].size();
+  };
+  EXPECT_EQ(sessions(), 1u);
+  const Finished rerun = imasim::test::run_shell(
+      std::string(IMASIM_EXE) + " experiment --trials 2 --modes static --script " + kScript +
+          " --seconds 0.5 --jobs 1 --out " + out + " --db " + db + " --json 2>" + err,
+      err);
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_EQ(nlohmann::json::parse(rerun.out)["trials_kept"], 1);
+  EXPECT_EQ(sessions(), 2u);
 }
 
 // A study killed with SIGKILL left its running trial an orphan that went on (and wrote its

@@ -355,9 +355,14 @@ TEST(HapticsBenchCommand, PrintsExactlyTheContractsKeys) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : j.items())
     keys.push_back(key);
-  EXPECT_EQ(keys, (std::vector<std::string>{"contacts", "force_max_n", "latency_p99_us",
-                                            "missed_deadlines", "period_max_us", "period_p50_us",
-                                            "period_p99_error_us", "rate_hz"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"contacts", "floor_missed_deadlines",
+                                            "floor_p99_error_us", "floor_seconds", "force_max_n",
+                                            "latency_p99_us", "missed_deadlines", "period_max_us",
+                                            "period_p50_us", "period_p99_error_us", "rate_hz"}));
+  // The machine's floor, measured beside the loop: a bare sleeper half a second before and after.
+  EXPECT_GT(j["floor_p99_error_us"].get<double>(), 0);
+  EXPECT_GE(j["floor_missed_deadlines"].get<int>(), 0);
+  EXPECT_NEAR(j["floor_seconds"].get<double>(), 1.0, 0.1);
   EXPECT_GT(j["rate_hz"].get<double>(), 0);
   EXPECT_GT(j["period_p50_us"].get<double>(), 0);
   EXPECT_GE(j["force_max_n"].get<double>(), 0);

@@ -1,8 +1,9 @@
 // Devices that vanish mid-cut, through the live console's 1 kHz loop (issue 42, "Safe on loss"):
 // the hand's force is zero from the tick the loss is seen, the pedal goes off and the power to 0,
 // the clutch engages so the instrument holds still; a device that comes back (its clock
-// restarted) is followed again. Each kind of device: an OpenIGTLink client that closes, a game
-// controller and a foot switch pulled out (SDL virtual joysticks).
+// restarted) is followed again. Each kind of device: an OpenIGTLink client that closes, one of
+// several OpenIGTLink peers (a pedal box beside a tracker) that closes, a game controller and a
+// foot switch pulled out (SDL virtual joysticks).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,6 +15,7 @@
 #include "devices/gamepad_device.hpp"
 #include "devices/igtl_device.hpp"
 #include "devices/joystick_pedal_device.hpp"
+#include "loopback_client.hpp"
 #include "virtual_joystick.hpp"
 
 namespace imasim::console {
@@ -250,6 +252,66 @@ TEST(DeviceLoss, AFootSwitchPulledOutMidCutStopsTheEnergyOnly) {
   console.stop();
   EXPECT_EQ(console.stats().losses[2].losses, 1u);
   EXPECT_EQ(console.stats().losses[0].losses, 0u);
+}
+
+using IgtlPeer = test::LoopbackClient;
+
+// A tracker on both hands and a pedal box, two peers of one OpenIGTLink server: the pedal box
+// vanishing mid-cut stops the energy at once, while the tracker's hands stay followed and felt.
+TEST(DeviceLoss, APedalBoxPeerVanishingMidCutStopsTheEnergyAndLeavesTheTrackersHands) {
+  devices::IgtlDeviceConfig config;
+  config.link.port = 0;
+  auto igtl = std::make_unique<devices::IgtlDevice>(config);
+  const std::uint16_t port = igtl->link().port();
+  std::vector<std::unique_ptr<devices::InputDevice>> list;
+  list.push_back(std::move(igtl));
+  LiveConsole console(std::move(list), test_params());
+  console.start();
+  std::uint64_t step = 0;
+  IgtlPeer tracker(port), pedal_box(port);
+  double t = 10.0;
+  auto track = [&] {
+    t += 1e-3;
+    tracker.send(devices::encode_pose("LeftHand", Pose{}, t));
+    tracker.send(devices::encode_pose("RightHand", Pose{}, t));
+  };
+  pedal_box.send(devices::encode_values("Pedal", {1, 300}, 0.0));
+  pedal_box.send(devices::encode_values("Footswitch", {1}, 0.0));  // a name the scene lacks
+  ASSERT_TRUE(wait_for(console, step, [&](const ConsoleInput& in) {
+    track();
+    return in.pedal == CauteryMode::cut && in.right.has_pose;
+  }));
+  pedal_box.close();
+  ASSERT_TRUE(wait_for(console, step, [&](const ConsoleInput& in) {
+    track();
+    return in.pedal_lost;
+  }));
+  const ConsoleInput lost = console.latest_input();
+  EXPECT_EQ(lost.pedal, CauteryMode::off);
+  EXPECT_EQ(lost.power_w, 0);
+  EXPECT_FALSE(lost.left.lost || lost.right.lost);  // the tracker is still there
+  EXPECT_FALSE(lost.right.clutch);
+  run_for(console, 0.1, step, [&](int) { track(); });
+  const ConsoleInput later = console.latest_input();
+  // What the window's panel shows: the peers, the refusal by reason and name, the pedal's loss.
+  const DeviceTally tally = console.device_tally();
+  EXPECT_GT(tally.time_s, 0);
+  EXPECT_EQ(tally.counts.peers_seen, 2u);
+  EXPECT_EQ(tally.counts.peers_dropped, 1u);
+  EXPECT_EQ(tally.counts.peers_connected, 1u);
+  EXPECT_EQ(tally.counts.refused_by_reason[std::size_t(devices::IgtlRefusal::unknown_device)], 1u);
+  ASSERT_EQ(tally.counts.named, 1u);
+  EXPECT_STREQ(tally.counts.refused_names[0].name.data(), "Footswitch");
+  EXPECT_EQ(tally.losses[2].losses, 1u);
+  EXPECT_TRUE(tally.losses[2].held);
+  EXPECT_GT(tally.losses[2].lost_s, 0.05);
+  EXPECT_EQ(tally.losses[0].losses, 0u);
+  console.stop();
+  EXPECT_EQ(later.pedal, CauteryMode::off);
+  EXPECT_FALSE(later.left.lost || later.right.lost);
+  EXPECT_EQ(console.stats().losses[2].losses, 1u);
+  EXPECT_EQ(console.stats().losses[0].losses, 0u);
+  EXPECT_EQ(console.stats().losses[1].losses, 0u);
 }
 
 }  // namespace

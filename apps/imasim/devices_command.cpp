@@ -10,6 +10,7 @@
 #include "devices/igtl_device.hpp"
 #include "devices/joystick_pedal_device.hpp"
 #include "devices/spacemouse_device.hpp"
+#include "devices_listen.hpp"
 #include "report.hpp"
 #include "scene/scene_file.hpp"
 
@@ -40,6 +41,14 @@ std::shared_ptr<DevicesOptions> add_devices_command(CLI::App& app) {
                   "Scene file whose devices.* keys map the devices; default: the built-in scene")
       ->check(non_empty());
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
+  cmd->add_flag("--listen", opt->listen,
+                "Listen for OpenIGTLink peers and show which device names and types arrive and "
+                "what each becomes under the scene's mapping");
+  cmd->add_option("--seconds", opt->listen_seconds, "With --listen: how long to listen")
+      ->check(CLI::Range(0.01, 86400.0));
+  cmd->add_option("--igtl-port", opt->igtl_port,
+                  "With --listen: the port (0: any free); default: the scene's devices.igtl_port")
+      ->check(CLI::Range(0, 65535));
   return opt;
 }
 
@@ -53,6 +62,17 @@ int run_devices_command(const DevicesOptions& o) {
         std::cerr << m << '\n';
       return 2;
     }
+  }
+  if (o.listen) {
+    ListenOptions listen;
+    listen.seconds = o.listen_seconds;
+    if (o.igtl_port >= 0) listen.port = std::uint16_t(o.igtl_port);
+    listen.json = o.json;
+    return listen_for_devices(settings, listen);
+  }
+  if (o.igtl_port >= 0 || o.listen_seconds != 10) {
+    std::cerr << "devices: --seconds and --igtl-port go with --listen\n";
+    return 2;
   }
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   {

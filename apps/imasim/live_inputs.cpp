@@ -200,6 +200,9 @@ nlohmann::ordered_json LiveInputs::finish() {
     report_["refused"] = refused;
     report_["peers_seen"] = info[0].peers_seen;
     report_["peers_dropped"] = info[0].peers_dropped;
+    report_["peers_timed_out"] = info[0].peers_timed_out;
+    report_["peers_turned_away"] = info[0].peers_turned_away;
+    report_["reconnects"] = info[0].reconnects;
     report_["forces_skipped"] = info[0].forces_skipped;
   }
   if (info.size() > 1 && info.back().kind == "pedal")

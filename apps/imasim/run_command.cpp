@@ -139,6 +139,10 @@ std::shared_ptr<RunOptions> add_run_command(CLI::App& app) {
   cmd->add_option("--replay", opt->replay_file,
                   "Replay a recorded input stream (--record-input) step by step")
       ->check(non_empty());
+  cmd->add_flag("--study-trial", opt->study_trial,
+                "(experiment's) an interrupted run leaves the trainee records alone: the study's "
+                "rerun records the trial")
+      ->group("");  // hidden: the study's own
   cmd->add_flag("--replay-anyway", opt->replay_anyway,
                 "Replay a stream recorded under another program, scene, patient, heart mode or "
                 "solver, or one cut short (said on stderr); its state will differ");
@@ -574,7 +578,11 @@ int run_run_command(const RunOptions& o) {
           {{"status", out["status"]}, {"steps", done}, {"simulated_s", w.state.time}}, *surgical);
       out["recorded"] = o.record_file;
       out["recorded_rows"] = recording->rows();
-      if (records) {
+      if (records && o.study_trial && interrupt_signal() != 0) {
+        out["trainee_record"] = {
+            {"skipped",
+             "an interrupted trial of a study: recorded when the study's rerun runs it"}};
+      } else if (records) {
         metrics::SessionRecord session;
         session.trainee = trainee;
         session.date_utc = started_utc;

@@ -31,7 +31,10 @@ struct RunOptions {
   // "script", "openigtlink" or "emulator"; or a recorded stream to replay.
   std::string devices;
   std::string replay_file;
-  bool replay_anyway = false;     // play a stream of another origin, or one cut short
+  bool replay_anyway = false;  // play a stream of another origin, or one cut short
+  // A trial of a study (experiment passes it): interrupted, it leaves the trainee records alone,
+  // for the study's rerun runs it again and records it then (once per trial).
+  bool study_trial = false;
   std::string record_input_file;  // empty: not recorded; else every step's input written there
   std::string record_file;        // empty: no trajectory; else the 60 Hz recording (CSV + JSON)
   std::string thresholds_file;    // empty: the metrics' default thresholds

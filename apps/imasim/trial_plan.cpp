@@ -56,8 +56,8 @@ std::vector<TrialPlan> plan_trials(const std::vector<std::string>& modes, int tr
 }
 
 std::vector<std::string> trial_arguments(const TrialPlan& plan, const OperatorChoice& op) {
-  std::vector<std::string> args = {"run", "--headless", "--json",      "--threads",
-                                   "1",   "--record",   plan.recording};
+  std::vector<std::string> args = {"run",       "--headless", "--json",   "--study-trial",
+                                   "--threads", "1",          "--record", plan.recording};
   if (plan.mode == "static") args.push_back("--static");
   args.insert(args.end(), {"--patient-seed", std::to_string(plan.patient_seed)});
   if (!op.script_file.empty())

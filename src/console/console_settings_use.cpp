@@ -55,6 +55,7 @@ devices::IgtlDeviceConfig igtl_device_config(const scene::ConsoleSettings& c) {
   d.link.address = c.igtl_address;
   d.link.port = static_cast<std::uint16_t>(c.igtl_port);
   d.link.allow_remote = c.igtl_allow_remote;
+  d.link.idle_timeout_s = double(c.igtl_idle_timeout_s);
   devices::IgtlNames& n = d.link.names;
   n.left_pose = c.left_hand, n.right_pose = c.right_hand;
   n.left_tool = c.left_tool, n.right_tool = c.right_tool;

@@ -18,6 +18,25 @@ std::vector<std::array<bool, kParts>> drives_of(
   return out;
 }
 
+// One source a part: a device's hold on each part it drives, lost on its own (a peer of a device
+// that serves several, a pedal box beside a tracker, can vanish while the others stay).
+std::vector<std::array<bool, kParts>> sources_of(
+    const std::vector<std::array<bool, kParts>>& drives, std::vector<std::size_t>& device,
+    std::vector<std::size_t>& part) {
+  std::vector<std::array<bool, kParts>> out;
+  for (std::size_t k = 0; k < drives.size(); ++k) {
+    for (std::size_t p = 0; p < kParts; ++p) {
+      if (!drives[k][p]) continue;
+      std::array<bool, kParts> only{};
+      only[p] = true;
+      out.push_back(only);
+      device.push_back(k);
+      part.push_back(p);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 LiveConsole::LiveConsole(std::vector<std::unique_ptr<devices::InputDevice>> devices,
@@ -26,8 +45,9 @@ LiveConsole::LiveConsole(std::vector<std::unique_ptr<devices::InputDevice>> devi
       devices_(std::move(devices)),
       drives_(drives_of(devices_)),
       t0_(std::chrono::steady_clock::now()),
-      connected_(devices_.size(), false),
-      guard_(drives_),
+      guard_(sources_of(drives_, source_device_, source_part_)),
+      connected_(source_device_.size(), false),
+      parts_up_(devices_.size(), std::array<bool, kParts>{}),
       tremor_{devices::TremorFilter(params.tremor), devices::TremorFilter(params.tremor)},
       safety_{haptics::ForceSafety(params.safety, 0.0), haptics::ForceSafety(params.safety, 0.0)},
       loop_(params.loop, [this](double) { tick(now_s()); }) {
@@ -75,11 +95,21 @@ void LiveConsole::tick(double now) {
   std::uint64_t refused = 0;
   for (std::size_t k = 0; k < devices_.size(); ++k) {
     devices_[k]->poll(now, raw_);
-    connected_[k] = devices_[k]->connected();
+    parts_up_[k] = devices_[k]->parts_connected();
     refusals |= devices_[k]->refusal_reasons();
     refused += devices_[k]->refused_total();
   }
+  for (std::size_t s = 0; s < connected_.size(); ++s)
+    connected_[s] = parts_up_[source_device_[s]][source_part_[s]];
   refused_total_.store(refused, std::memory_order_relaxed);
+  if (ticks_++ % kTallyTicks == 0) {
+    DeviceTally tally;
+    for (const auto& d : devices_)
+      d->add_counts(tally.counts);
+    tally.losses = guard_.parts();
+    tally.time_s = now;
+    tallies_.publish(tally);
+  }
   if ((refusals & ~refusals_seen_.load(std::memory_order_relaxed)) != 0)
     refusals_seen_.fetch_or(refusals, std::memory_order_relaxed);
   // A lost device's parts are released at this very tick (loss_guard.hpp).
@@ -109,8 +139,8 @@ void LiveConsole::tick(double now) {
     clutch_[h] = hand.clutch;
     // A held hand gets no force from this tick on, even once its device is back.
     bool device_ok = false;
-    for (std::size_t k = 0; k < devices_.size(); ++k)
-      device_ok = device_ok || (drives_[k][std::size_t(h)] && connected_[k]);
+    for (std::size_t s = 0; s < connected_.size(); ++s)
+      device_ok = device_ok || (source_part_[s] == std::size_t(h) && connected_[s]);
     device_ok = device_ok && !hand.lost;
     haptics::ForceChannels f;
     if (have_model && hand.has_pose && !hand.clutch) {
@@ -135,6 +165,11 @@ LiveConsoleStats LiveConsole::stats() const {
   s.losses = guard_.parts();
   s.refused = refused_total();
   return s;
+}
+
+DeviceTally LiveConsole::device_tally() {
+  tallies_.read(tally_read_);
+  return tally_read_;
 }
 
 std::vector<devices::DeviceInfo> LiveConsole::device_info() const {

@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "console/device_tally.hpp"
 #include "console/loss_guard.hpp"
 #include "devices/input_device.hpp"
 #include "devices/tremor_filter.hpp"
@@ -70,6 +71,8 @@ class LiveConsole {
   }
   // Any thread: the messages the devices refused so far, all told.
   std::uint64_t refused_total() const { return refused_total_.load(std::memory_order_relaxed); }
+  // One reader thread (the physics'): the newest tally, or the last one read when none is newer.
+  DeviceTally device_tally();
   // The devices' descriptions (any thread while stopped; the loop owns them while running).
   std::vector<devices::DeviceInfo> device_info() const;
 
@@ -87,8 +90,12 @@ class LiveConsole {
   // Haptic thread only.
   devices::ConsoleInput raw_{};      // as the devices wrote it
   devices::ConsoleInput guarded_{};  // with what lost devices drove released
-  std::vector<bool> connected_;      // per device, this tick
+  // The sources of the parts: one a part a device drives (its device and part), each lost on its
+  // own; the guard is over them.
+  std::vector<std::size_t> source_device_, source_part_;
   LossGuard guard_;
+  std::vector<bool> connected_;                     // per source, this tick
+  std::vector<std::array<bool, kParts>> parts_up_;  // per device, this tick
   std::array<devices::TremorFilter, 2> tremor_;
   std::array<haptics::ForceSafety, 2> safety_;
   std::array<bool, 2> clutch_{false, false};
@@ -97,6 +104,9 @@ class LiveConsole {
   LiveConsoleStats stats_;
   std::atomic<std::uint32_t> refusals_seen_{0};
   std::atomic<std::uint64_t> refused_total_{0};
+  haptics::LatestValue<DeviceTally> tallies_;
+  DeviceTally tally_read_{};  // the reader's
+  std::uint64_t ticks_ = 0;
   haptics::HapticLoop loop_;
 };
 

@@ -108,6 +108,13 @@ const char* igtl_refusal_meaning(IgtlRefusal r) {
   return "?";
 }
 
+std::string igtl_printable_name(const char* name) {
+  std::string out(name);
+  for (char& c : out)
+    if (c < 0x20 || c > 0x7e) c = '?';
+  return out.empty() ? std::string("(no name)") : out;
+}
+
 const char* igtl_refusal_name(IgtlRefusal r) {
   switch (r) {
     case IgtlRefusal::bad_header:
@@ -145,35 +152,59 @@ std::uint64_t IgtlCounters::refused_total() const {
 }
 
 IgtlDecoder::IgtlDecoder(IgtlNames names) : names_(std::move(names)) {
-  start_fresh();
+  for (std::size_t k = 0; k < senders_.size(); ++k)
+    start_fresh(k);
 }
 
-void IgtlDecoder::start_fresh() {
-  last_time_s_.fill(-std::numeric_limits<double>::infinity());
-  clock_offset_s_ = behind_since_s_ = behind_offset_s_ = std::numeric_limits<double>::quiet_NaN();
+void IgtlDecoder::start_fresh(std::size_t sender) {
+  Sender& s = senders_[std::min(sender, senders_.size() - 1)];
+  s.last_time_s.fill(-std::numeric_limits<double>::infinity());
+  s.clock_offset_s = s.behind_since_s = s.behind_offset_s =
+      std::numeric_limits<double>::quiet_NaN();
 }
 
-std::optional<IgtlRefusal> IgtlDecoder::stamp_problem(const std::string& device, double time_s,
-                                                      double arrival_s) {
+std::optional<IgtlRefusal> IgtlDecoder::stamp_problem(Sender& s, const std::string& device,
+                                                      double time_s, double arrival_s) {
   if (arrival_s > 0) {
     const double offset = time_s - arrival_s;
-    if (std::isnan(clock_offset_s_)) clock_offset_s_ = offset;
-    const double lead = offset - clock_offset_s_;
+    if (std::isnan(s.clock_offset_s)) s.clock_offset_s = offset;
+    const double lead = offset - s.clock_offset_s;
     if (lead > kIgtlMaxStampLeadS) return IgtlRefusal::future_stamp;
     if (lead < -kIgtlMaxStampLeadS) {
-      if (std::isnan(behind_since_s_) ||
-          !(std::abs(offset - behind_offset_s_) <= kIgtlMaxStampLeadS)) {
-        behind_since_s_ = arrival_s, behind_offset_s_ = offset;
-      } else if (arrival_s - behind_since_s_ >= kIgtlClockResetS) {
-        start_fresh();  // the clock and the order start again from this message
-        clock_offset_s_ = offset;
+      if (std::isnan(s.behind_since_s) ||
+          !(std::abs(offset - s.behind_offset_s) <= kIgtlMaxStampLeadS)) {
+        s.behind_since_s = arrival_s, s.behind_offset_s = offset;
+      } else if (arrival_s - s.behind_since_s >= kIgtlClockResetS) {
+        // The clock and the order start again from this message.
+        s.last_time_s.fill(-std::numeric_limits<double>::infinity());
+        s.behind_since_s = s.behind_offset_s = std::numeric_limits<double>::quiet_NaN();
+        s.clock_offset_s = offset;
       }
     } else {
-      behind_since_s_ = std::numeric_limits<double>::quiet_NaN();
+      s.behind_since_s = std::numeric_limits<double>::quiet_NaN();
     }
   }
-  if (!later_than_last(device, time_s)) return IgtlRefusal::out_of_order;
+  if (!later_than_last(s, device, time_s)) return IgtlRefusal::out_of_order;
   return std::nullopt;
+}
+
+void IgtlDecoder::count_arrival(const IgtlHeader& head, bool accepted) {
+  const std::string_view name = std::string_view(head.device).substr(0, 20);
+  const std::string_view type = std::string_view(head.type).substr(0, 12);
+  IgtlCounters& c = counters_;
+  IgtlArrival* entry = nullptr;
+  for (std::size_t k = 0; k < c.arrived && entry == nullptr; ++k)
+    if (std::string_view(c.arrivals[k].name.data()) == name &&
+        std::string_view(c.arrivals[k].type.data()) == type)
+      entry = &c.arrivals[k];
+  if (entry == nullptr) {
+    if (c.arrived == c.arrivals.size()) return;  // the table is full: counted as refusals only
+    entry = &c.arrivals[c.arrived++];
+    name.copy(entry->name.data(), name.size());
+    type.copy(entry->type.data(), type.size());
+  }
+  ++entry->messages;
+  if (accepted) ++entry->accepted;
 }
 
 bool IgtlDecoder::refuse(IgtlRefusal r, std::string_view device) {
@@ -221,7 +252,7 @@ std::optional<IgtlHeader> IgtlDecoder::read_header(const std::uint8_t* bytes) {
   return out;
 }
 
-bool IgtlDecoder::later_than_last(const std::string& device, double time_s) {
+bool IgtlDecoder::later_than_last(Sender& s, const std::string& device, double time_s) {
   std::size_t slot = 0;
   if (device == names_.left_pose)
     slot = kLeftPose;
@@ -237,21 +268,32 @@ bool IgtlDecoder::later_than_last(const std::string& device, double time_s) {
     slot = kRightButtons;
   else
     slot = kPedal;
-  if (!(time_s > last_time_s_[slot])) return false;
-  last_time_s_[slot] = time_s;
+  if (!(time_s > s.last_time_s[slot])) return false;
+  s.last_time_s[slot] = time_s;
   return true;
 }
 
 bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
-                        std::size_t body_bytes, ConsoleInput& input, double arrival_s) {
+                        std::size_t body_bytes, ConsoleInput& input, double arrival_s,
+                        std::size_t sender) {
   const std::optional<IgtlHeader> head = read_header(header);
   if (!head) return false;
+  const bool accepted = apply_checked(*head, header, body, body_bytes, input, arrival_s,
+                                      senders_[std::min(sender, senders_.size() - 1)]);
+  count_arrival(*head, accepted);
+  return accepted;
+}
+
+bool IgtlDecoder::apply_checked(const IgtlHeader& header_fields, const std::uint8_t* header,
+                                const std::uint8_t* body, std::size_t body_bytes,
+                                ConsoleInput& input, double arrival_s, Sender& sender) {
+  const IgtlHeader* head = &header_fields;
   // An unused stamp is 0 (the protocol): such messages come in TCP's order, timed on arrival.
   const bool unstamped = head->time_s == 0;
   const double time_s = unstamped ? arrival_s : head->time_s;
   auto stamp_refused = [&]() -> std::optional<IgtlRefusal> {
     if (unstamped) return std::nullopt;
-    return stamp_problem(head->device, head->time_s, arrival_s);
+    return stamp_problem(sender, head->device, head->time_s, arrival_s);
   };
   if (head->body_bytes != body_bytes) return refuse(IgtlRefusal::bad_body, head->device);
   const igtl::MessageHeader::Pointer h = unpack_header(header);
@@ -302,6 +344,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
     hand.frame = frame;
     hand.time_s = time_s;
     hand.has_pose = true;
+    last_part_ = left ? 0 : 1;
     ++counters_.accepted;
     return true;
   }
@@ -320,6 +363,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
       hand.has_buttons = true;
       hand.clutch = v[0] == 1;
       hand.jaw = Real(v[1]);
+      last_part_ = device == names_.left_buttons ? 0 : 1;
     } else {
       if (v.empty() || v.size() > 2 || (v[0] != 0 && v[0] != 1 && v[0] != 2) ||
           (v.size() == 2 && !(v[1] >= 0 && v[1] <= kMaxPowerW)))
@@ -327,6 +371,7 @@ bool IgtlDecoder::apply(const std::uint8_t* header, const std::uint8_t* body,
       if (const auto why = stamp_refused()) return refuse(*why, head->device);
       input.pedal = static_cast<haptics::CauteryMode>(int(v[0]));
       if (v.size() == 2) input.power_w = Real(v[1]);
+      last_part_ = 2;
     }
     ++counters_.accepted;
     return true;

@@ -58,6 +58,9 @@ inline constexpr std::size_t kIgtlRefusals = 8;
 inline constexpr double kIgtlMaxStampLeadS = 1.0;
 inline constexpr double kIgtlClockResetS = 0.5;
 const char* igtl_refusal_name(IgtlRefusal r);
+// A device name off the wire as a report can show it: printable ASCII ('?' for any other byte),
+// "(no name)" when empty.
+std::string igtl_printable_name(const char* name);
 const char* igtl_refusal_meaning(IgtlRefusal r);  // one line for a user
 
 // Refusals of one device name (the header's, at most 20 characters; "" when the header could not
@@ -68,13 +71,28 @@ struct IgtlNameRefusals {
 };
 inline constexpr std::size_t kIgtlRefusedNames = 16;  // names told apart; the rest are "others"
 
+// The messages of one device name and type whose header could be read, accepted or not: what
+// `imasim devices --listen` shows, so that a user can map a tracker's names to the hands.
+struct IgtlArrival {
+  std::array<char, 21> name{};
+  std::array<char, 13> type{};
+  std::uint64_t messages = 0, accepted = 0;
+};
+inline constexpr std::size_t kIgtlArrivals = 16;  // names and types told apart
+
+// Peers followed at once (a tracker for each hand, a console and a pedal box): each its own
+// connection, with its own clock and order.
+inline constexpr std::size_t kIgtlMaxPeers = 4;
+
 struct IgtlCounters {
   std::uint64_t accepted = 0;
   std::array<std::uint64_t, kIgtlRefusals> refused{};
   // By device name, in the order first refused (no allocation in the loop).
   std::array<IgtlNameRefusals, kIgtlRefusedNames> refused_names{};
-  std::size_t named = 0;             // entries of refused_names in use
-  std::uint64_t refused_others = 0;  // refusals of names past the table's room
+  std::size_t named = 0;                              // entries of refused_names in use
+  std::uint64_t refused_others = 0;                   // refusals of names past the table's room
+  std::array<IgtlArrival, kIgtlArrivals> arrivals{};  // in the order first seen
+  std::size_t arrived = 0;                            // entries of arrivals in use
   std::uint64_t refused_total() const;
   // Bit r set: refusal reason r seen at least once.
   std::uint32_t reasons_seen() const;
@@ -99,30 +117,46 @@ class IgtlDecoder {
   // `arrival_s`: when it arrived (the loop's clock, unit: s; 0: no clock, so no check of stamps
   // against it). A time stamp of 0 means unstamped (the protocol's unused stamp, which common
   // trackers send): such a message is taken in the order it arrives and timed by its arrival.
+  // `sender` (< kIgtlMaxPeers): the connection it came on, whose clock and order it is checked
+  // against.
   bool apply(const std::uint8_t* header, const std::uint8_t* body, std::size_t body_bytes,
-             ConsoleInput& input, double arrival_s = 0);
+             ConsoleInput& input, double arrival_s = 0, std::size_t sender = 0);
 
-  // A new peer: its time stamps are its own clock's, so ordering starts afresh (a device that
-  // reconnects with its clock restarted is followed, not refused as out of order).
-  void start_fresh();
+  // A new peer on connection `sender`: its time stamps are its own clock's, so ordering starts
+  // afresh (a device that reconnects with its clock restarted is followed, not refused as out of
+  // order).
+  void start_fresh(std::size_t sender = 0);
 
   const IgtlCounters& counters() const { return counters_; }
   const IgtlNames& names() const { return names_; }
+  // The part the last accepted message drove: 0 left hand, 1 right hand, 2 pedal (-1: none yet).
+  int last_part() const { return last_part_; }
 
  private:
+  // One connection's sender as its messages showed it.
+  struct Sender {
+    std::array<double, 7> last_time_s{};  // per mapped device: poses, tools, buttons, pedal
+    // Its clock (stamp - arrival); NaN until its first stamped message.
+    double clock_offset_s = 0;
+    // Since when (arrival) stamps have been far behind the clock, agreeing on this offset; NaN:
+    // not.
+    double behind_since_s = 0, behind_offset_s = 0;
+  };
+
   bool refuse(IgtlRefusal r, std::string_view device);
-  bool later_than_last(const std::string& device, double time_s);
+  void count_arrival(const IgtlHeader& head, bool accepted);
+  // apply's checks and effect once the header is read.
+  bool apply_checked(const IgtlHeader& head, const std::uint8_t* header, const std::uint8_t* body,
+                     std::size_t body_bytes, ConsoleInput& input, double arrival_s, Sender& sender);
+  bool later_than_last(Sender& sender, const std::string& device, double time_s);
   // Why a stamped message's stamp is refused, or empty (and its order then recorded).
-  std::optional<IgtlRefusal> stamp_problem(const std::string& device, double time_s,
+  std::optional<IgtlRefusal> stamp_problem(Sender& sender, const std::string& device, double time_s,
                                            double arrival_s);
 
   IgtlNames names_;
   IgtlCounters counters_;
-  std::array<double, 7> last_time_s_;  // per mapped device: poses, tools, buttons, pedal
-  // The sender's clock (stamp - arrival) on this connection; NaN until its first stamped message.
-  double clock_offset_s_ = 0;
-  // Since when (arrival) stamps have been far behind the clock, agreeing on this offset; NaN: not.
-  double behind_since_s_ = 0, behind_offset_s_ = 0;
+  std::array<Sender, kIgtlMaxPeers> senders_;
+  int last_part_ = -1;
 };
 
 // The values of a whole SENSOR message (checked as apply checks it), or empty: for a device's

@@ -2,18 +2,6 @@
 
 namespace imasim::devices {
 
-namespace {
-
-// A device name as a report can show it: printable ASCII ('?' for any other byte).
-std::string printable_name(const char* name) {
-  std::string out(name);
-  for (char& c : out)
-    if (c < 0x20 || c > 0x7e) c = '?';
-  return out.empty() ? std::string("(no name)") : out;
-}
-
-}  // namespace
-
 IgtlDevice::IgtlDevice(const IgtlDeviceConfig& config) : config_(config), link_(config.link) {}
 
 void IgtlDevice::poll(double now_s, ConsoleInput& input) {
@@ -22,6 +10,18 @@ void IgtlDevice::poll(double now_s, ConsoleInput& input) {
 
 void IgtlDevice::send_force(Hand hand, const Vec3& force_n, double now_s) {
   link_.send_force(hand, force_n, now_s);
+}
+
+std::array<bool, 3> IgtlDevice::parts_connected() const {
+  return {link_.part_connected(0), link_.part_connected(1), link_.part_connected(2)};
+}
+
+void IgtlDevice::add_counts(DeviceCounts& counts) const {
+  counts.add(link_.counters());
+  counts.peers_seen += link_.peers_seen();
+  counts.peers_dropped += link_.peers_dropped();
+  counts.peers_connected += link_.peers_connected();
+  counts.peers_turned_away += link_.peers_turned_away();
 }
 
 DeviceInfo IgtlDevice::info() const {
@@ -46,13 +46,17 @@ DeviceInfo IgtlDevice::info() const {
     if (counted.refused[r] > 0)
       d.refused_by_reason.emplace_back(igtl_refusal_name(IgtlRefusal(r)), counted.refused[r]);
   for (std::size_t k = 0; k < counted.named; ++k)
-    d.refused_by_name.emplace_back(printable_name(counted.refused_names[k].name.data()),
+    d.refused_by_name.emplace_back(igtl_printable_name(counted.refused_names[k].name.data()),
                                    counted.refused_names[k].count);
   if (counted.refused_others > 0)
     d.refused_by_name.emplace_back("(other names)", counted.refused_others);
   d.peers_seen = link_.peers_seen();
   d.peers_dropped = link_.peers_dropped();
   d.forces_skipped = link_.forces_skipped();
+  d.peers_timed_out = link_.peers_timed_out();
+  d.peers_turned_away = link_.peers_turned_away();
+  d.peers_connected = link_.peers_connected();
+  d.reconnects = link_.reconnects();
   return d;
 }
 

@@ -20,6 +20,8 @@ class IgtlDevice final : public InputDevice {
   void poll(double now_s, ConsoleInput& input) override;
   void send_force(Hand hand, const Vec3& force_n, double now_s) override;
   bool connected() const override { return link_.connected(); }
+  std::array<bool, 3> parts_connected() const override;
+  void add_counts(DeviceCounts& counts) const override;
   DeviceInfo info() const override;
   // Bit r: IgtlRefusal r.
   std::uint32_t refusal_reasons() const override { return link_.counters().reasons_seen(); }

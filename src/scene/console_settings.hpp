@@ -48,6 +48,7 @@ struct ConsoleSettings {
   std::string igtl_address = "127.0.0.1";
   std::uint32_t igtl_port = 18944;
   bool igtl_allow_remote = false;
+  Real igtl_idle_timeout_s = 5;  // a peer silent this long is dropped; 0: never (unit: s)
   std::string left_hand = "LeftHand", right_hand = "RightHand";
   std::string left_tool = "LeftTool", right_tool = "RightTool";
   std::string left_buttons = "LeftButtons", right_buttons = "RightButtons";

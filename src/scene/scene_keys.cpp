@@ -296,6 +296,10 @@ const SceneKey kKeys[] = {
      "OpenIGTLink port (the protocol's is 18944; 0: any free)"},
     {"devices.igtl_allow_remote", BoolRef([](P& p) { return &p.console.igtl_allow_remote; }), 0, 0,
      "accept an address off this machine (false: loopback only)"},
+    {"devices.igtl_idle_timeout_s", RealRef([](P& p) { return &p.console.igtl_idle_timeout_s; }), 0,
+     3600,
+     "OpenIGTLink: drop a peer that sends nothing whole this long (s; 0: never; it releases what "
+     "the peer drove)"},
     IMASIM_NAME_KEY("left_hand", left_hand, "TRANSFORM name of the left hand's pose (mm)"),
     IMASIM_NAME_KEY("right_hand", right_hand, "TRANSFORM name of the right hand's pose (mm)"),
     IMASIM_NAME_KEY("left_tool", left_tool, "TRANSFORM name of a tracked left instrument (mm)"),

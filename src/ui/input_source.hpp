@@ -28,6 +28,8 @@ class InputSource {
   virtual std::optional<console::LiveConsoleStats> console_stats() const { return {}; }
   // Any thread: the device messages refused so far (0 without a live console).
   virtual std::uint64_t refused_total() const { return 0; }
+  // Physics thread: the devices' refusals, peers and losses (empty without a live console).
+  virtual std::optional<console::DeviceTally> device_tally() { return {}; }
 };
 
 class ScriptInput final : public InputSource {
@@ -57,6 +59,7 @@ class ConsoleInputSource final : public InputSource {
     return console_.stats();
   }
   std::uint64_t refused_total() const override { return console_.refused_total(); }
+  std::optional<console::DeviceTally> device_tally() override { return console_.device_tally(); }
 
  private:
   KeyboardMouseDevice* keyboard_;

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 
+#include "console/device_tally.hpp"
 #include "math/types.hpp"
 #include "surgery/events.hpp"
 #include "surgery/pedal.hpp"
@@ -59,6 +60,9 @@ struct LiveNumbers {
   std::uint64_t grasps = 0;
   std::uint64_t devices_lost = 0;     // device_lost events
   std::uint64_t device_refusals = 0;  // device messages refused (run's devices.refused)
+  // By reason and name, the peers, how long each part was lost (with a live console).
+  bool has_device_tally = false;
+  console::DeviceTally device_tally;
   // contact_begin events per tissue (surgery::Tissue's order): touches of the heart, the IMA...
   std::array<std::uint64_t, surgery::kTissueCount> contacts_begun{};
   std::uint32_t instrument_collisions = 0;  // tips closer than 5 mm, counted once per approach

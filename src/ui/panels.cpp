@@ -14,7 +14,8 @@ namespace {
 
 constexpr std::array<const char*, 2> kTools = {"Forceps (left)", "Hook (right)"};
 constexpr std::array<const char*, 3> kChannels = {"normal", "tangential", "thermal"};
-constexpr float kGap = 6;  // between stacked panels (unit: pixels)
+constexpr float kGap = 6;                         // between stacked panels (unit: pixels)
+const ImVec4 kWarning(1.0f, 0.75f, 0.25f, 1.0f);  // what needs the user's eye (amber)
 
 double degrees(Real rad) {
   return double(rad) * 180.0 / std::numbers::pi;
@@ -105,14 +106,43 @@ void forces_panel(const LiveNumbers& n) {
   }
 }
 
+// The live devices: their peers, what they refused by reason and by sender's name, and how long
+// each part was held for a lost device (issue 42: nothing refused in silence).
+static void devices_lines(const console::DeviceTally& t) {
+  const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
+  const devices::DeviceCounts& c = t.counts;
+  if (c.peers_seen > 0)
+    ImGui::Text("device peers: %llu now, %llu seen, %llu dropped, %llu turned away",
+                u(c.peers_connected), u(c.peers_seen), u(c.peers_dropped), u(c.peers_turned_away));
+  if (c.refused_total() > 0) {
+    ImGui::TextColored(kWarning, "device messages refused %llu:", u(c.refused_total()));
+    for (std::size_t r = 0; r < c.refused_by_reason.size(); ++r)
+      if (c.refused_by_reason[r] > 0)
+        ImGui::TextColored(
+            kWarning, "  %s %llu: %s", devices::igtl_refusal_name(devices::IgtlRefusal(r)),
+            u(c.refused_by_reason[r]), devices::igtl_refusal_meaning(devices::IgtlRefusal(r)));
+    for (std::size_t k = 0; k < c.named; ++k)
+      ImGui::TextColored(kWarning, "  from \"%s\" %llu", c.refused_names[k].name.data(),
+                         u(c.refused_names[k].count));
+    if (c.refused_others > 0)
+      ImGui::TextColored(kWarning, "  from other names %llu", u(c.refused_others));
+  }
+  static constexpr const char* kPartNames[] = {"left hand", "right hand", "pedal"};
+  for (std::size_t p = 0; p < t.losses.size(); ++p)
+    if (t.losses[p].losses > 0)
+      ImGui::TextColored(kWarning, "%s lost %llu time(s), %.2f s held%s", kPartNames[p],
+                         u(t.losses[p].losses), t.losses[p].lost_s,
+                         t.losses[p].held ? " (now)" : "");
+}
+
 void metrics_panel(const LiveNumbers& n) {
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   ImGui::Text("events %llu, grasps %llu, devices lost %llu", u(n.events), u(n.grasps),
               u(n.devices_lost));
-  if (n.device_refusals > 0)
-    ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.25f, 1.0f),
-                       "device messages refused %llu (by reason and name in the JSON)",
-                       u(n.device_refusals));
+  if (n.has_device_tally)
+    devices_lines(n.device_tally);
+  else if (n.device_refusals > 0)
+    ImGui::TextColored(kWarning, "device messages refused %llu", u(n.device_refusals));
   ImGui::Text("fascia edges cut %llu, strands cut %llu / %llu", u(n.fascia_edges_cut),
               u(n.strands_cut), u(n.strands_total));
   ImGui::Text("strands torn %llu", u(n.strands_torn));

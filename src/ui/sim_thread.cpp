@@ -266,6 +266,10 @@ void SimThread::publish(bool frame) {
     }
     n.pedal = s.stations[1].pedal;
     n.device_refusals = input_->refused_total();
+    if (const std::optional<console::DeviceTally> t = input_->device_tally()) {
+      n.has_device_tally = true;
+      n.device_tally = *t;
+    }
     n.events = s.events.events.size();
     n.fascia_edges_cut = s.fascia_edges_cut;
     n.strands_cut = s.strands_cut;
