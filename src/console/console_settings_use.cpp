@@ -1,5 +1,8 @@
 #include "console/console_settings_use.hpp"
 
+#include <Eigen/Geometry>
+#include <numbers>
+
 namespace imasim::console {
 
 namespace {
@@ -50,12 +53,25 @@ LiveConsoleParams live_console_params(const scene::ConsoleSettings& c) {
   return p;
 }
 
+Pose tracker_to_scene(const scene::ConsoleSettings& c) {
+  const Vec3 a = c.tracker_rotation_deg * (std::numbers::pi_v<Real> / 180);
+  Pose p;
+  // About x, then y, then z, about the scene's fixed axes.
+  p.rotation =
+      (Eigen::AngleAxis<Real>(a.z(), Vec3::UnitZ()) * Eigen::AngleAxis<Real>(a.y(), Vec3::UnitY()) *
+       Eigen::AngleAxis<Real>(a.x(), Vec3::UnitX()))
+          .toRotationMatrix();
+  p.translation = c.tracker_translation;
+  return p;
+}
+
 devices::IgtlDeviceConfig igtl_device_config(const scene::ConsoleSettings& c) {
   devices::IgtlDeviceConfig d;
   d.link.address = c.igtl_address;
   d.link.port = static_cast<std::uint16_t>(c.igtl_port);
   d.link.allow_remote = c.igtl_allow_remote;
   d.link.idle_timeout_s = double(c.igtl_idle_timeout_s);
+  d.link.tracker_to_scene = tracker_to_scene(c);
   devices::IgtlNames& n = d.link.names;
   n.left_pose = c.left_hand, n.right_pose = c.right_hand;
   n.left_tool = c.left_tool, n.right_tool = c.right_tool;

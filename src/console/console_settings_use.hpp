@@ -16,6 +16,9 @@ LiveConsoleParams live_console_params(const scene::ConsoleSettings& settings);
 // The link as the scene file describes it (the role and any command-line overrides are the
 // caller's).
 devices::IgtlDeviceConfig igtl_device_config(const scene::ConsoleSettings& settings);
+// devices.tracker_translation_m and tracker_rotation_deg as the pose of the tracker's frame in
+// the scene.
+Pose tracker_to_scene(const scene::ConsoleSettings& settings);
 devices::GamepadMapping gamepad_mapping(const scene::ConsoleSettings& settings);
 devices::SpaceMouseMapping spacemouse_mapping(const scene::ConsoleSettings& settings);
 devices::PedalMapping pedal_mapping(const scene::ConsoleSettings& settings);

@@ -71,11 +71,14 @@ haptics::LocalModel local_model_of(const session::SurgicalSession& s, int statio
                                                     : haptics::CauteryMode::coag;
     m.power_w = st.power_w;
   }
-  // The device's hinge in the scene, from the arm's anchors. A tool pose is used as given.
-  if (st.source == surgery::PoseSource::hand) {
+  // The device's hinge in the scene, from the arm's anchors. A tool pose is used as given, or
+  // from its clutch registration's anchors at 1:1.
+  const bool registered_tool =
+      st.source == surgery::PoseSource::tool && s.params.tool_pose_clutch_registered;
+  if (st.source == surgery::PoseSource::hand || registered_tool) {
     m.hand_anchor = st.arm_state.hand_anchor.translation;
     m.tool_anchor = st.arm_state.tool_anchor.translation;
-    m.motion_scale = st.arm.motion_scale;
+    m.motion_scale = registered_tool ? Real(1) : st.arm.motion_scale;
   }
   return m;
 }

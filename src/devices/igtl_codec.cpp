@@ -331,6 +331,9 @@ bool IgtlDecoder::apply_checked(const IgtlHeader& header_fields, const std::uint
       return refuse(IgtlRefusal::bad_values, head->device);
     }
     if (const auto why = stamp_refused()) return refuse(*why, head->device);
+    // Into the scene's frame (a tracker's own frame is rarely the scene's).
+    r = tracker_to_scene_.rotation * r;
+    p = tracker_to_scene_.rotation * p + tracker_to_scene_.translation;
     const bool left = device == names_.left_pose || device == names_.left_tool;
     HandInput& hand = input.hand(left ? Hand::left : Hand::right);
     const PoseFrame frame = tool ? PoseFrame::tool : PoseFrame::hand;

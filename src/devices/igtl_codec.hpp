@@ -129,6 +129,10 @@ class IgtlDecoder {
 
   const IgtlCounters& counters() const { return counters_; }
   const IgtlNames& names() const { return names_; }
+  // The tracker's frame in the scene: every pose that arrives is turned by its rotation and moved
+  // by its translation (metres) before use. Identity by default.
+  void set_tracker_to_scene(const Pose& tracker_to_scene) { tracker_to_scene_ = tracker_to_scene; }
+
   // The part the last accepted message drove: 0 left hand, 1 right hand, 2 pedal (-1: none yet).
   int last_part() const { return last_part_; }
 
@@ -157,6 +161,7 @@ class IgtlDecoder {
   IgtlCounters counters_;
   std::array<Sender, kIgtlMaxPeers> senders_;
   int last_part_ = -1;
+  Pose tracker_to_scene_;
 };
 
 // The values of a whole SENSOR message (checked as apply checks it), or empty: for a device's

@@ -55,6 +55,7 @@ bool is_loopback_address(const std::string& address) {
 }
 
 IgtlLink::IgtlLink(const IgtlLinkConfig& config) : config_(config), decoder_(config.names) {
+  decoder_.set_tracker_to_scene(config.tracker_to_scene);
   errno = 0;
   if (!config.allow_remote && !is_loopback_address(config.address)) {
     fail("'" + config.address +

@@ -32,6 +32,7 @@ struct IgtlLinkConfig {
   // continuously (PLUS, Slicer's OpenIGTLinkIF at 10-100 Hz).
   double idle_timeout_s = 5;
   double stall_timeout_s = 1;  // a message begun and not finished this long: dropped (unit: s)
+  Pose tracker_to_scene;  // the tracker's frame in the scene (IgtlDecoder::set_tracker_to_scene)
   // Client: the wait before calling again after a lost connection, doubling from the first to
   // the second on each failed call (unit: s).
   double reconnect_first_s = 0.1, reconnect_most_s = 2;

@@ -33,6 +33,7 @@ inline constexpr std::array<const char*, 5> kForceTissueNames = {"fascia", "fat"
 inline constexpr std::array<std::string_view, 6> kGamepadButtonNames = {
     "a", "b", "x", "y", "left_shoulder", "right_shoulder"};
 inline constexpr std::array<std::string_view, 2> kHandNames = {"left", "right"};
+inline constexpr std::array<std::string_view, 2> kToolRegistrations = {"fixed", "clutch"};
 // A foot-switch button number meaning "not mapped".
 inline constexpr std::uint32_t kUnmappedPedalButton = 32;
 
@@ -49,6 +50,13 @@ struct ConsoleSettings {
   std::uint32_t igtl_port = 18944;
   bool igtl_allow_remote = false;
   Real igtl_idle_timeout_s = 5;  // a peer silent this long is dropped; 0: never (unit: s)
+  // The tracker's frame in the scene: every OpenIGTLink pose is turned by the rotation (x, then
+  // y, then z, about the scene's axes) and moved by the translation (unit: m, deg).
+  Vec3 tracker_translation = Vec3::Zero();
+  Vec3 tracker_rotation_deg = Vec3::Zero();
+  // Tool poses: "fixed" placed where the tracker says; "clutch" moved by how far the tracker moved
+  // since the clutch was last released (registered at the first pose and at each release).
+  std::string tool_registration = "fixed";
   std::string left_hand = "LeftHand", right_hand = "RightHand";
   std::string left_tool = "LeftTool", right_tool = "RightTool";
   std::string left_buttons = "LeftButtons", right_buttons = "RightButtons";

@@ -300,6 +300,16 @@ const SceneKey kKeys[] = {
      3600,
      "OpenIGTLink: drop a peer that sends nothing whole this long (s; 0: never; it releases what "
      "the peer drove)"},
+    {"devices.tracker_translation_m", Vec3Ref([](P& p) { return &p.console.tracker_translation; }),
+     -2, 2, "OpenIGTLink: the tracker's origin in the scene (every pose is moved by it)"},
+    {"devices.tracker_rotation_deg", Vec3Ref([](P& p) { return &p.console.tracker_rotation_deg; }),
+     -360, 360,
+     "OpenIGTLink: the tracker's frame turned into the scene's (about x, then y, then z)"},
+    {"devices.tool_registration", ChoiceRef([](P& p) { return &p.console.tool_registration; }), 0,
+     0,
+     "tool poses: fixed (where the tracker says) or clutch (moved from where the tool is at each "
+     "clutch release)",
+     kToolRegistrations},
     IMASIM_NAME_KEY("left_hand", left_hand, "TRANSFORM name of the left hand's pose (mm)"),
     IMASIM_NAME_KEY("right_hand", right_hand, "TRANSFORM name of the right hand's pose (mm)"),
     IMASIM_NAME_KEY("left_tool", left_tool, "TRANSFORM name of a tracked left instrument (mm)"),

@@ -43,11 +43,22 @@ void update_pose(SurgicalSession& s, Station& st, const surgery::InstrumentInput
   st.previous_pose.translation += st.carried;  // where the last step's solve left the tool
   st.carried = Vec3::Zero();                   // a step that fails carries nothing
   st.previous_controller = st.state.controller;
+  if (in.device_lost) st.tool_registered = false;  // a returning tracker registers afresh
   switch (in.source) {
     case surgery::PoseSource::hand:
       surgery::update_arm(st.arm, in.pose, in.clutch, st.arm_state);
       break;
     case surgery::PoseSource::tool:
+      if (s.params.tool_pose_clutch_registered) {
+        // The arm's clutch at 1:1: the first tool pose registers as a clutch release does.
+        surgery::ArmParams one_to_one = st.arm;
+        one_to_one.motion_scale = 1;
+        if (!st.tool_registered || st.source != surgery::PoseSource::tool)
+          st.arm_state.clutched = true;
+        st.tool_registered = true;
+        surgery::update_arm(one_to_one, in.pose, in.clutch, st.arm_state);
+        break;
+      }
       st.arm_state.commanded = in.pose;
       st.arm_state.tool = surgery::constrain_to_port(st.arm, in.pose);
       break;
@@ -170,6 +181,7 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
   // each tissue (eq. 17's k_d and c_d, eq. 18's mu, in the force model's order of
   // kForceTissueNames).
   const scene::ConsoleSettings& console = scene_params.console;
+  s.params.tool_pose_clutch_registered = console.tool_registration == "clutch";
   const Tissue force_order[5] = {Tissue::fascia, Tissue::fat, Tissue::ima, Tissue::heart,
                                  Tissue::chest_wall};
   for (std::size_t k = 0; k < 5; ++k) {

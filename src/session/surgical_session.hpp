@@ -47,6 +47,10 @@ struct SessionParams {
   // Where each instrument starts: this fraction of the way from its port to the port target.
   Real start_fraction = Real(0.75);
   surgery::ProxyParams proxy;
+  // Tool poses (a tracker on the instrument): placed where they say (false), or, registered at the
+  // clutch (true), moving the tool by how far the tracker moved since the first pose or the last
+  // clutch release, 1:1, with the tracker's turn (scene file: devices.tool_registration).
+  bool tool_pose_clutch_registered = false;
 };
 
 // Where the heart or the chest wall stopped an instrument this step (the rows that stop its proxy
@@ -84,6 +88,7 @@ struct Station {
   surgery::PedalMode pedal = surgery::PedalMode::off;
   Real power_w = 0;  // the cautery's power while the pedal is pressed (unit: W)
   surgery::PoseSource source = surgery::PoseSource::none;  // of the last pose given
+  bool tool_registered = false;  // clutch registration: the tracker's anchor is set
   bool device_lost = false;  // its device is gone: held still, no energy (SessionInput)
 };
 
