@@ -89,7 +89,7 @@ struct Station {
   Real power_w = 0;  // the cautery's power while the pedal is pressed (unit: W)
   surgery::PoseSource source = surgery::PoseSource::none;  // of the last pose given
   bool tool_registered = false;  // clutch registration: the tracker's anchor is set
-  bool device_lost = false;  // its device is gone: held still, no energy (SessionInput)
+  bool device_lost = false;      // its device is gone: held still, no energy (SessionInput)
 };
 
 struct SurgicalSession {
