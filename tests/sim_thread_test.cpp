@@ -8,6 +8,8 @@
 #include <fstream>
 #include <thread>
 
+#include "devices/igtl_device.hpp"
+#include "loopback_client.hpp"
 #include "scene/scene_file.hpp"
 #include "ui/input_source.hpp"
 #include "ui/sim_thread.hpp"
@@ -139,6 +141,38 @@ TEST(ConsoleInputSource, TheKeyboardDrivesTheSessionThroughTheLiveConsole) {
       },
       10s));
   source.stop();
+}
+
+// The numbers the metrics panel draws carry what the devices refused, by reason and by the
+// sender's name, and the peers (issue 42, "Nothing refused in silence"): a tracker sending under a
+// name the scene does not map.
+TEST(SimThread, TheNumbersCarryTheDevicesRefusalsByReasonAndName) {
+  devices::IgtlDeviceConfig igtl;
+  igtl.link.port = 0;
+  auto device = std::make_unique<devices::IgtlDevice>(igtl);
+  const std::uint16_t port = device->link().port();
+  std::vector<std::unique_ptr<devices::InputDevice>> list;
+  list.push_back(std::move(device));
+  console::LiveConsoleParams params;
+  params.loop.realtime_priority = 0;
+  SimConfig config;
+  config.realtime = false;
+  config.end_s = 60;
+  SimThread sim(config, std::make_unique<ConsoleInputSource>(std::move(list), nullptr, params));
+  sim.start();
+  const test::LoopbackClient tracker(port);
+  tracker.send(devices::encode_pose("Tracker", Pose{}, 1.0));
+  LiveNumbers n;
+  ASSERT_TRUE(wait_for([&] {
+    return sim.latest_numbers(n) && n.has_device_tally && n.device_tally.counts.named == 1;
+  }));
+  sim.stop();
+  const devices::DeviceCounts& c = n.device_tally.counts;
+  EXPECT_EQ(c.refused_by_reason[std::size_t(devices::IgtlRefusal::unknown_device)], 1u);
+  EXPECT_STREQ(c.refused_names[0].name.data(), "Tracker");
+  EXPECT_EQ(c.refused_names[0].count, 1u);
+  EXPECT_EQ(c.peers_seen, 1u);
+  EXPECT_EQ(n.device_refusals, 1u);
 }
 
 }  // namespace
