@@ -78,9 +78,9 @@ TEST(RunCommand, RunsTheThoraxSceneHeadless) {
   EXPECT_GT(j["particles"].get<int>(), 1000);
   EXPECT_EQ(j["ports"], 4);
   EXPECT_GT(j["ima_motion_max_m"].get<double>(), 1e-4);
-  // The wall's beat is measured (issue 41: it should be still; today it takes the heart's drive).
-  EXPECT_GT(j["chest_wall_motion_max_m"].get<double>(), 0.0);
-  EXPECT_LT(j["chest_wall_motion_max_m"].get<double>(), 0.01);
+  // Bone does not beat: the chest wall stays put while the heart moves the vessel (issue 41: the
+  // wall took the heart's drive, 6.4 mm over a beat).
+  EXPECT_LT(j["chest_wall_motion_max_m"].get<double>(), 1e-4);
   EXPECT_NEAR(j["heart_phase"].get<double>(), 0.7 + 0.5 * 75 / 60.0 - 1, 1e-9);
   EXPECT_EQ(j["status"], "ok");
   const auto two =

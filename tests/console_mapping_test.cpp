@@ -98,7 +98,7 @@ TEST(LocalModelOf, TheHeartsContactMovesWithItsWall) {
   st.source = surgery::PoseSource::tool;
   const Vec3 hinge = st.state.controller.translation;
   st.stop.tissue = surgery::Tissue::heart;
-  st.stop.point = hinge + Vec3(0, 0, 0.004);  // the jaws' tip, 4 mm past the hinge
+  st.stop.point = st.stop.plane = hinge + Vec3(0, 0, 0.004);  // the jaws' tip, 4 mm past the hinge
   st.stop.normal = -Vec3::UnitY();
   st.stop.velocity = Vec3(0.01, -0.03, 0);  // the wall coming at the tool at 30 mm/s
   const haptics::LocalModel m = local_model_of(s, 0, 1.0, 3);
@@ -117,56 +117,52 @@ TEST(LocalModelOf, TheHeartsContactMovesWithItsWall) {
   EXPECT_NEAR(f.normal.normalized().dot(-Vec3::UnitY()), 1.0, 1e-12);
 }
 
-// The forceps hold tissue that pulls them along +y while the heart pushes them that way too: the
-// spring k o carries both, and the hand feels it once. Each plane renders the share of the offset
-// its own force explains at its k_d (rendered at both planes, the offset came out at 300 + 400
-// N/m), whichever k the coupling took.
-TEST(LocalModelOf, TheOffsetIsFeltOnceWhenTheHeartAlsoStopsTheProxy) {
+// The forceps hold tissue that pulls them along +y while the heart stops them: the spring k o
+// carries both. The hand feels the pull once, at the fascia's k_d whatever the coupling's k, and
+// the heart at its own k_d at the device's depth past where it stops the proxy (the pull's share
+// rendered at k_d / k of the offset would be felt k_d / k times; the heart's at the spring's, the
+// coupling's k instead of the heart's).
+TEST(LocalModelOf, ThePullIsFeltOnceAndTheHeartAtItsOwnKd) {
   session::SurgicalSession s = default_session();
   session::Station& st = s.stations[0];
   st.source = surgery::PoseSource::tool;
   const Vec3 hinge = st.state.controller.translation;
-  const Real k = 300;  // the fascia's coupling took the offset
   const Vec3 heart_normal = Vec3(0, 0.8, 0.6);
   const Vec3 pull(0, 0.3, 0);
-  const Vec3 heart = 0.2 * heart_normal + Vec3(0.01, 0, 0);  // its push and a little friction
-  st.proxy.pressed = surgery::Tissue::fascia;
-  st.proxy.normal_force = pull;
-  st.proxy.tissue_force = pull + heart;
-  st.proxy.coupling = k;
-  st.proxy.offset = (pull + heart) / k;
-  st.stop.tissue = surgery::Tissue::heart;
-  st.stop.point = hinge + Vec3(0, 0, 0.004);
-  st.stop.normal = heart_normal;
-  st.stop.force = heart;
-  const haptics::LocalModel m = local_model_of(s, 0, 1.0, 3);
-  ASSERT_EQ(m.contact_count, 2u);
   const haptics::ForceModelParams law = haptics::default_force_model_params();
-  ASSERT_EQ(law.of(haptics::TissueKind::fascia).stiffness, k);
-  ASSERT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::fascia)], k);
-  const haptics::DeviceTip device =
-      haptics::device_in_scene(m, hinge - st.proxy.offset, Vec3::Zero());
-  const haptics::ForceChannels f = haptics::evaluate_local_model(m, law, device, 1.0);
-  // The pull at the fascia's k_d and the heart's push along its normal at its own: k o without
-  // the heart's friction across its normal, which is eq. 18's to render.
-  const Vec3 normal = pull + heart.dot(heart_normal) * heart_normal;
-  EXPECT_NEAR((f.normal - normal).norm(), 0, 1e-12);
-  // A millimetre further on, the heart's plane keeps the depth its push explains plus that
-  // millimetre: each plane still moves with the device.
-  const haptics::DeviceTip further =
-      haptics::device_in_scene(m, hinge - st.proxy.offset - Vec3(0, 0.001, 0), Vec3::Zero());
-  const haptics::ForceChannels g = haptics::evaluate_local_model(m, law, further, 1.0);
   const Real heart_k = law.of(haptics::TissueKind::heart).stiffness;
-  EXPECT_NEAR((g.normal - normal).norm(),
-              (k * 0.001 * Vec3::UnitY() + heart_k * 0.0008 * heart_normal).norm(), 1e-12);
-  // Had the heart's coupling taken the offset (k = 400, a smaller offset for the same forces), the
-  // hand would feel the same.
-  st.proxy.coupling = heart_k;
-  st.proxy.offset = (pull + heart) / heart_k;
-  const haptics::LocalModel h = local_model_of(s, 0, 1.0, 3);
-  const haptics::ForceChannels e = haptics::evaluate_local_model(
-      h, law, haptics::device_in_scene(h, hinge - st.proxy.offset, Vec3::Zero()), 1.0);
-  EXPECT_NEAR((e.normal - normal).norm(), 0, 1e-12);
+  const Real fascia_k = law.of(haptics::TissueKind::fascia).stiffness;
+  ASSERT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::fascia)], fascia_k);
+  ASSERT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::heart)], heart_k);
+  for (const Real k : {Real(300), Real(1000)}) {
+    // The device 1 mm past the heart's stop along its normal, and the pull's stretch of the
+    // spring: the heart carries the rest of k o, plus a little friction.
+    st.proxy.offset = 0.001 * heart_normal + pull / k;
+    st.proxy.coupling = k;
+    st.proxy.pressed = surgery::Tissue::fascia;
+    st.proxy.normal_force = pull;
+    const Vec3 heart = k * 0.001 * heart_normal + Vec3(0.01, 0, 0);
+    st.proxy.tissue_force = pull + heart;
+    st.stop.tissue = surgery::Tissue::heart;
+    st.stop.point = st.stop.plane = hinge + Vec3(0, 0, 0.004);
+    st.stop.normal = heart_normal;
+    st.stop.force = heart;
+    const haptics::LocalModel m = local_model_of(s, 0, 1.0, 3);
+    ASSERT_EQ(m.contact_count, 2u);
+    const haptics::DeviceTip device =
+        haptics::device_in_scene(m, hinge - st.proxy.offset, Vec3::Zero());
+    const haptics::ForceChannels f = haptics::evaluate_local_model(m, law, device, 1.0);
+    const Real heart_depth = st.proxy.offset.dot(heart_normal);
+    const Vec3 normal = pull + heart_k * heart_depth * heart_normal;
+    EXPECT_NEAR((f.normal - normal).norm(), 0, 1e-12) << k;
+    // A millimetre further on (-y), each plane's depth grows by the device's motion along it.
+    const haptics::DeviceTip further =
+        haptics::device_in_scene(m, hinge - st.proxy.offset - Vec3(0, 0.001, 0), Vec3::Zero());
+    const haptics::ForceChannels g = haptics::evaluate_local_model(m, law, further, 1.0);
+    EXPECT_NEAR((g.normal - normal).norm(),
+                (fascia_k * 0.001 * Vec3::UnitY() + heart_k * 0.0008 * heart_normal).norm(), 1e-12)
+        << k;
+  }
 }
 
 // The scene file's console defaults are the haptics' and devices' own (one table each side).

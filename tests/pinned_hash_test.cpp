@@ -24,7 +24,7 @@ constexpr bool kPortable = false;
 #endif
 
 constexpr std::uint64_t kClothHash = 0x4b3e03bcb505667dull;
-constexpr std::uint64_t kSessionHash = 0xd4ae5f3a8231dd8eull;
+constexpr std::uint64_t kSessionHash = 0xee176661ca81291aull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

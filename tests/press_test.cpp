@@ -1,10 +1,10 @@
 // `imasim press` (issue 41): the hook pressed into a tissue of the built-in scene and held at each
 // depth, the force the device receives beside eq. 17's k_d d. On the rigid surfaces (the chest
 // wall, the heart held at its static phase) the tool's proxy stops at the surface and the hand
-// feels the coupling's spring, k_d d less the substep's splitting, c / (c + k_d h)
-// (docs/haptics.md): within 2 % for the wall (k_d 1000 N/m, c_d 5 N s/m) and the heart (400, 3). On
-// the fascia the membrane pushes back, more the deeper it is pressed. Release only, label
-// `physics`.
+// feels eq. 17 at the surface's k_d and the device's depth past the plane where it stops the
+// proxy (docs/haptics.md): within 2 % for the wall (k_d 1000 N/m) and the heart (400 N/m), whose
+// curved surface lets the tool slide a little within its friction cone. On the fascia the
+// membrane pushes back, more the deeper it is pressed. Release only, label `physics`.
 #include <gtest/gtest.h>
 
 #include <algorithm>

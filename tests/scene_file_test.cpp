@@ -90,6 +90,9 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "bad.toml:2: key 'force_fascia.stiffness_n_per_m': expected a number in [1, 100000], got 0"},
       {"[force_fat]\ndamping_n_s_per_m = 0.0\n",
        "bad.toml:2: key 'force_fat.damping_n_s_per_m': expected a number in [0.01, 1000], got 0"},
+      {"[haptics]\nproxy_damping_n_s_per_m = 0\n",
+       "bad.toml:2: key 'haptics.proxy_damping_n_s_per_m': expected a number in [0.01, 1000], got "
+       "0"},
       {"[heart]\nhart_rate_bpm = 80\n",
        "bad.toml:2: key 'heart.hart_rate_bpm': unknown key; did you mean 'heart.heart_rate_bpm'?"},
       {"[heart]\n\nejection_fraction = 1.5\n",
@@ -269,7 +272,8 @@ TEST(SceneFile, SuggestsByEditDistance) {
 TEST(SceneFile, ConsoleSettingsReachTheSession) {
   const ThoraxSceneParams p = parse_scene(
       "[force_fascia]\nstiffness_n_per_m = 450\nfriction = 0.35\n[haptics]\nmotion_scale = 0.2\n"
-      "[devices]\nigtl_address = \"127.0.0.2\"\nright_tool = \"HookTracker\"\n",
+      "proxy_stiffness_n_per_m = 2500\nproxy_damping_n_s_per_m = 7\n[devices]\nigtl_address = "
+      "\"127.0.0.2\"\nright_tool = \"HookTracker\"\n",
       "console.toml");
   EXPECT_EQ(p.console.force[0].stiffness, 450);
   EXPECT_EQ(p.console.igtl_address, "127.0.0.2");
@@ -287,6 +291,12 @@ TEST(SceneFile, ConsoleSettingsReachTheSession) {
   const session::SurgicalSession s = session::make_surgical_session(p, {});
   EXPECT_EQ(s.stations[0].arm.motion_scale, Real(0.2));
   EXPECT_EQ(s.params.proxy.stiffness[std::size_t(surgery::Tissue::fascia)], 450);
+  // The proxy's coupling is its own, apart from every tissue's k_d.
+  EXPECT_EQ(s.params.proxy.coupling_stiffness, 2500);
+  EXPECT_EQ(s.params.proxy.coupling_damping, 7);
+  EXPECT_EQ(session::make_surgical_session(default_thorax_scene_params(), {})
+                .params.proxy.coupling_stiffness,
+            surgery::ProxyParams{}.coupling_stiffness);
   // eq. 18's mu is also the friction of the instruments' contacts with that tissue.
   EXPECT_EQ(s.params.proxy.friction[std::size_t(surgery::Tissue::fascia)], Real(0.35));
 }

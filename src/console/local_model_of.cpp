@@ -27,44 +27,41 @@ haptics::LocalModel local_model_of(const session::SurgicalSession& s, int statio
   m.step = step;
   const Vec3 reference = st.state.controller.translation;  // the proxy's hinge
   // The spring k o carries every force on the proxy: the tissue's and, when the heart or the wall
-  // stopped it, theirs. Each plane is put at the depth its own share of that force explains at its
-  // tissue's k_d, so the hand feels the spring once, whichever tissue's k the coupling took
-  // (rendered at each plane's k_d, the offset came out once per plane and k_d / k times).
+  // stopped it, theirs. The tissue's plane is put at the depth its share of that force explains at
+  // its k_d, so the hand feels what the tissue pushes, whatever the coupling's k (its share
+  // rendered at k_d / k of the offset would have been felt k_d / k times).
   const Vec3& offset = st.proxy.offset;
   const Real k = st.proxy.coupling;
   const Vec3 spring = k * offset;
-  // The plane's shift towards the device from the proxy's hinge that leaves the device (the hinge
-  // less the offset) `share`'s depth along `normal` at `k_tissue`; none without a coupling yet.
-  auto shift = [&](const Vec3& normal, const Vec3& share, Real k_tissue) -> Vec3 {
-    if (!(k > 0 && k_tissue > 0)) return Vec3::Zero();
-    return (offset.dot(normal) - share.dot(normal) / k_tissue) * normal;
-  };
   const bool stopped = st.stop.tissue != surgery::Tissue::none;
   const Real pushed = st.proxy.normal_force.norm();
   const bool pressed = st.proxy.pressed != surgery::Tissue::none && pushed > 0;
   // Tissue: the plane normal to its normal channel (the contacts' push and the pull), with the
-  // spring's force less the surface's. The contacts' friction across that normal is left to
-  // eq. 18, which renders a sliding tool's drag itself: taken into the normal it would be felt
-  // twice.
+  // spring's force less the surface's, shifted towards the device from the proxy's hinge so that
+  // the device (the hinge less the offset) is that share's depth at k_d along the normal. The
+  // contacts' friction across that normal is left to eq. 18, which renders a sliding tool's drag
+  // itself: taken into the normal it would be felt twice.
   if (pressed) {
     haptics::LocalContact& c = m.contacts[m.contact_count++];
     c.normal = st.proxy.normal_force / pushed;
     c.tissue = tissue_kind(st.proxy.pressed);
     const Vec3 share = stopped ? Vec3(spring - st.stop.force) : spring;
-    c.point =
-        reference - shift(c.normal, share, s.params.proxy.stiffness[std::size_t(st.proxy.pressed)]);
+    const Real k_tissue = s.params.proxy.stiffness[std::size_t(st.proxy.pressed)];
+    if (k > 0 && k_tissue > 0)
+      c.point = reference - (offset.dot(c.normal) - share.dot(c.normal) / k_tissue) * c.normal;
+    else
+      c.point = reference;
   }
-  // The heart or the wall: their surface where they stop the proxy, the device's point there
-  // carried by the same lever; beside the tissue with their own force, alone with the spring's.
+  // The heart or the wall: rigid, they stop the proxy where the tool meets them, and the hand
+  // feels them at their own k_d: the plane is where they stop it, the device's point the stopped
+  // probe point carried by the same lever, so the device's depth past the plane is eq. 17's d.
   if (stopped) {
     haptics::LocalContact& c = m.contacts[m.contact_count++];
-    c.point = st.stop.point;
+    c.point = st.stop.plane;
     c.normal = st.stop.normal;
     c.surface_velocity = st.stop.velocity;
     c.tissue = tissue_kind(st.stop.tissue);
-    const Vec3 share = pressed ? st.stop.force : spring;
-    c.lever = st.stop.point - reference +
-              shift(c.normal, share, s.params.proxy.stiffness[std::size_t(st.stop.tissue)]);
+    c.lever = st.stop.point - reference;
   }
   if (station == 1 && st.pedal != surgery::PedalMode::off) {
     m.cautery = st.pedal == surgery::PedalMode::cut ? haptics::CauteryMode::cut

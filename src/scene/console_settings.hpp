@@ -39,6 +39,9 @@ inline constexpr std::uint32_t kUnmappedPedalButton = 32;
 
 struct ConsoleSettings {
   std::array<TissueForceSettings, 5> force;
+  // The tool proxy's coupling to the device, one for every tissue (surgery/tool_proxy.hpp).
+  Real proxy_stiffness = 1000;        // (unit: N/m)
+  Real proxy_damping = 5;             // (unit: N s/m)
   Real device_max_force = Real(3.3);  // (unit: N)
   Real max_force_rate = 500;          // (unit: N/s)
   Real ramp_s = Real(0.5);            // force ramp-in after start and clutch (unit: s)

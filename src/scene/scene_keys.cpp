@@ -64,10 +64,10 @@ constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, k
 #define IMASIM_FORCE_KEYS(table, i)                                                              \
   SceneKey{table ".stiffness_n_per_m",                                                           \
            RealRef([](P& p) { return &p.console.force[i].stiffness; }), 1, 1e5,                  \
-           "k_d of eq. 17, also the tool proxy's coupling (> 0: 0 would make the tool rigid)"},  \
+           "k_d of eq. 17: the stiffness the hand feels the tissue at"},                         \
       SceneKey{table ".damping_n_s_per_m",                                                       \
                RealRef([](P& p) { return &p.console.force[i].damping; }), 0.01, 1e3,             \
-               "c_d of eq. 17, also the proxy's damper (> 0: 0 would make the tool rigid)"},     \
+               "c_d of eq. 17"},                                                                 \
       SceneKey{table ".friction", RealRef([](P& p) { return &p.console.force[i].friction; }), 0, \
                2, "mu of eq. 18, also the instruments' contact friction"},                       \
       SceneKey{table ".cutting_resistance_n_s_per_m",                                            \
@@ -275,6 +275,11 @@ const SceneKey kKeys[] = {
     IMASIM_FORCE_KEYS("force_heart", 3),
     IMASIM_FORCE_KEYS("force_chest_wall", 4),
 
+    {"haptics.proxy_stiffness_n_per_m", RealRef([](P& p) { return &p.console.proxy_stiffness; }), 1,
+     1e5,
+     "the tool proxy's coupling to the device, every tissue's (stiff: the hand feels the tissue)"},
+    {"haptics.proxy_damping_n_s_per_m", RealRef([](P& p) { return &p.console.proxy_damping; }),
+     0.01, 1e3, "the tool proxy's damper (> 0: 0 would make the tool rigid)"},
     {"haptics.device_max_force_n", RealRef([](P& p) { return &p.console.device_max_force; }), 0, 40,
      "the force a hand's device renders at most (desktop devices: 3.3 N)"},
     {"haptics.max_force_rate_n_per_s", RealRef([](P& p) { return &p.console.max_force_rate; }), 1,

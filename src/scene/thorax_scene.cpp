@@ -93,11 +93,10 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   scene.heart = tissue::make_heart_field(heart_model, params.playback);
   scene.skeleton = make_chest_skeleton(scene.patient);
   tissue::TissueWorld& w = scene.patch.world;
-  // Deep tissues anchored to the heart's motion: the chest wall, the vessel and the fat around
-  // it, and the fascia (whose fixed perimeter is its anchor). The wall's share is not anatomy
-  // (bone does not beat: run's chest_wall_motion_max_m reports it); left while the hook's press
-  // at the default solve depends on it (docs/heart.md).
-  tissue::add_heart_anchors(scene.heart, w, {scene.patch.wall, scene.patch.ima, scene.patch.fascia},
+  // Deep tissues anchored to the heart's motion: the vessel and the fat around it, and the
+  // fascia (whose fixed perimeter is its anchor). Not the chest wall: bone does not beat (run's
+  // chest_wall_motion_max_m reports it).
+  tissue::add_heart_anchors(scene.heart, w, {scene.patch.ima, scene.patch.fascia},
                             {scene.patch.ima_fat});
   tissue::advance_heart(scene.heart, w, w.state.time);
   if (params.heart_series.phase_files.empty()) {
@@ -130,6 +129,7 @@ void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile) {
   tissue::gather_wall_contacts(scene.layout.wall, w.state.particles, dt, scene.contact, contacts);
   tissue::gather_floor_contacts(scene.layout.cavity_floor_y, w.state.particles, dt, scene.contact,
                                 contacts);
+  tissue::drop_held_rows(contacts, 0, w.held);
   profile[physics::Stage::contacts] += clock.lap();
 }
 

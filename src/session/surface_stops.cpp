@@ -69,6 +69,7 @@ SurfaceStop surface_stop(SurgicalSession& s, const Station& st, bool heart) {
     n = -wall_radial(s.scene.layout.wall, stop.point);
   }
   if (n.norm() > 0) stop.normal = n.normalized();
+  stop.plane = stop.point;  // the guard leaves the point at the clearance
   if (heart) {
     stop.velocity = tissue::heart_surface_velocity(s.scene.heart, stop.point, kHeartSearch);
   }

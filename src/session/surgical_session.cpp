@@ -177,18 +177,18 @@ SurgicalSession make_surgical_session(const scene::ThoraxSceneParams& scene_para
   s.cutter = surgery::make_fascia_cutter(patch.fascia);
   tissue::finish_setup(w);
 
-  // The scene file's console settings: the hands' motion scaling and the proxy's coupling to
-  // each tissue (eq. 17's k_d and c_d, eq. 18's mu, in the force model's order of
-  // kForceTissueNames).
+  // The scene file's console settings: the hands' motion scaling, the proxy's coupling, and per
+  // tissue eq. 17's k_d and eq. 18's mu (in the force model's order of kForceTissueNames).
   const scene::ConsoleSettings& console = scene_params.console;
   s.params.tool_pose_clutch_registered = console.tool_registration == "clutch";
   const Tissue force_order[5] = {Tissue::fascia, Tissue::fat, Tissue::ima, Tissue::heart,
                                  Tissue::chest_wall};
   for (std::size_t k = 0; k < 5; ++k) {
     s.params.proxy.stiffness[std::size_t(force_order[k])] = console.force[k].stiffness;
-    s.params.proxy.damping[std::size_t(force_order[k])] = console.force[k].damping;
     s.params.proxy.friction[std::size_t(force_order[k])] = console.force[k].friction;
   }
+  s.params.proxy.coupling_stiffness = console.proxy_stiffness;
+  s.params.proxy.coupling_damping = console.proxy_damping;
   const char* names[2] = {"left_instrument", "right_instrument"};
   for (int k = 0; k < 2; ++k) {
     Station& st = s.stations[k];

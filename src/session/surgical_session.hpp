@@ -54,11 +54,13 @@ struct SessionParams {
 };
 
 // Where the heart or the chest wall stopped an instrument this step (the rows that stop its proxy
-// inside the solve, else the god-object guard before it): the stopped probe point, the surface's
-// outward normal there, and which one.
+// inside the solve, else the god-object guard before it): the stopped probe point, a point of the
+// plane it is stopped at (the surface plus the tools' clearance), the surface's outward normal
+// there, and which one.
 struct SurfaceStop {
   surgery::Tissue tissue = surgery::Tissue::none;  // none: not stopped
   Vec3 point = Vec3::Zero();                       // (unit: m)
+  Vec3 plane = Vec3::Zero();                       // (unit: m)
   Vec3 normal = Vec3::UnitZ();
   Vec3 velocity = Vec3::Zero();  // of the surface there: the heart's wall moves (unit: m/s)
   // The surface's push and friction on the tool over the last step, all its rows together; zero

@@ -46,21 +46,14 @@ void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,
                         std::span<physics::ContactRow> rows, std::uint32_t body_index,
                         const physics::ObjectId* particle_object, const Tissue* object_tissue,
                         std::size_t object_count, physics::ProxyBody& body) {
-  std::array<Real, kTissueCount> count{};
   for (physics::ContactRow& c : rows) {
     c.body = body_index;
     const Tissue touched = tissue_of(particle_object, object_tissue, object_count, c.particle);
-    count[std::size_t(touched)] += 1;
     if (touched == Tissue::none) continue;
     c.static_friction = c.kinetic_friction = params.friction[std::size_t(touched)];
   }
-  Tissue tissue = largest(count);
-  if (tissue == Tissue::none) tissue = state.held;
-  if (tissue == Tissue::none) tissue = state.stopped_by;
-  if (tissue == Tissue::none) tissue = state.pressed;
-  if (tissue == Tissue::none) tissue = Tissue::fascia;
-  body.stiffness = params.stiffness[std::size_t(tissue)];
-  body.damping = params.damping[std::size_t(tissue)];
+  body.stiffness = params.coupling_stiffness;
+  body.damping = params.coupling_damping;
   body.max_offset = params.max_offset;
   body.rest = Vec3::Zero();
   body.offset = state.offset;

@@ -1,16 +1,20 @@
 #pragma once
-// The tool proxy (virtual coupling, SPEC S5 reading; issue 13): the instrument in the physics is
-// not where the hand puts it but a proxy coupled to that "device pose" by eq. 17's spring and
-// damper (k_d, c_d of the tissue it presses), and stopped by what it touches. The heart and the
-// chest wall stop it inside the solve as well, through rows between the body and their surfaces
-// (physics/body_stop.hpp; the session's god-object stop before the step guards only against a
-// motion through them). Deformable tissue stops it inside the solve: the proxy is a
+// The tool proxy (virtual coupling, SPEC S5 reading; issues 13 and 41): the instrument in the
+// physics is not where the hand puts it but a proxy coupled to that "device pose" by a stiff
+// spring and damper, one coupling for every tissue, and stopped by what it touches. The heart and
+// the chest wall stop it inside the solve as well, through rows between the body and their
+// surfaces (physics/body_stop.hpp; the session's god-object stop before the step guards only
+// against a motion through them). Deformable tissue stops it inside the solve: the proxy is a
 // physics::ProxyBody whose offset o from the device is an unknown of the step, and the instrument's
 // contact rows are two-body constraints with it, so the tissue's reaction pushes the proxy back in
 // the same substeps in which the tool pushes the tissue (physics/proxy_body.hpp). At rest k o is
-// the force the tissue pushes the tool with, and eq. 17's d is the depth of the device past the
-// proxy along the contact normal: k d is what both the hand and the tissue feel. With nothing
-// touched the proxy returns to the device pose (time constant c / k, 7 ms for the fascia).
+// the force the tissue pushes the tool with. The coupling is apart from eq. 17's k_d: the device
+// and the tissue are springs in series, so a coupling of the tissue's own k_d would let the hand
+// feel half the tissue's push at most, and one that changed with the tissue touched would switch
+// between steps as rows come and go (the held hook's force chattered step to step between the
+// fascia's 300 and the fat's 100 N/m). Stiff, it leaves the hand what the tissue pushes: the
+// local model (console/local_model_of.hpp) renders it at each tissue's k_d. With nothing touched
+// the proxy returns to the device pose (time constant c / k, 5 ms).
 //
 // Held tissue pulls the forceps through the grasp's attachments, which name the body as well
 // (physics/body_attachment.hpp): the pull moves the proxy within the same substeps, and at rest
@@ -28,10 +32,14 @@
 namespace imasim::surgery {
 
 struct ProxyParams {
-  // The coupling per tissue, indexed by Tissue: eq. 17's k_d (unit: N/m) and c_d (unit: N s/m),
-  // copied from the force law by whoever sets up the haptics (docs/haptics.md).
+  // Eq. 17's k_d per tissue, indexed by Tissue (unit: N/m), copied from the force law by whoever
+  // sets up the haptics (docs/haptics.md): the stiffness each tissue is rendered at
+  // (console/local_model_of.hpp).
   std::array<Real, kTissueCount> stiffness{300, 300, 200, 100, 400, 1000};
-  std::array<Real, kTissueCount> damping{2, 2, 2, 1, 3, 5};
+  // The coupling, one for every tissue: stiff beside the tissues' k_d, so the hand feels what the
+  // tissue pushes (unit: N/m), and damped to a 5 ms time constant (unit: N s/m).
+  Real coupling_stiffness = 1000;
+  Real coupling_damping = 5;
   // Coulomb's mu between the tool and each tissue, eq. 18's mu (-): one coefficient per pair, so
   // the drag the tool puts on the tissue and the one the hand feels are the same friction. It is
   // the contact rows' static and kinetic friction alike.
@@ -62,9 +70,7 @@ Vec3 tissue_force_on_tool(const physics::ContactSet& contacts,
                           std::size_t object_count, std::uint32_t tag, Real dt, Tissue& pressed);
 
 // Before a step, with the instrument's contact rows gathered (`rows`): they name the body
-// (`body_index` in the state's proxies), and the body takes the coupling of the tissue most of
-// them touch (with none, of the tissue it holds, else of the surface that stopped it in the last
-// step, else of the tissue pressed in it; with none either, the fascia's), the bound and the
+// (`body_index` in the state's proxies), and the body takes the coupling, the bound and the
 // offset the proxy ended the last step with (its spring relaxed at the device). Each row takes
 // its own tissue's friction (a particle of no tissue keeps the row's).
 void prepare_proxy_body(const ProxyParams& params, const ProxyState& state,

@@ -78,4 +78,15 @@ void gather_floor_contacts(Real floor_y, const physics::Particles& P, Real dt,
   }
 }
 
+void drop_held_rows(physics::ContactSet& out, std::size_t first,
+                    std::span<const std::uint8_t> held) {
+  std::size_t kept = first;
+  for (std::size_t k = first; k < out.rows.size(); ++k) {
+    const std::uint32_t i = out.rows[k].particle;
+    if (i < held.size() && held[i]) continue;
+    out.rows[kept++] = out.rows[k];
+  }
+  out.rows.resize(kept);
+}
+
 }  // namespace imasim::tissue

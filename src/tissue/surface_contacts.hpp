@@ -13,6 +13,8 @@
 //    field), normal +y: particles within `search` of it from above get it; it does not move.
 #include <cstdint>
 
+#include <span>
+
 #include "geometry/tube.hpp"
 #include "physics/contact.hpp"
 #include "physics/particles.hpp"
@@ -45,5 +47,13 @@ void gather_wall_contacts(const geometry::CylinderPatchSpec& wall,
 // Appends the cavity floor's contacts (margin 0): the plane y = floor_y (unit: m), normal +y.
 void gather_floor_contacts(Real floor_y, const physics::Particles& particles, Real dt,
                            const SurfaceContactParams& params, physics::ContactSet& out);
+
+// Removes the rows of `out` from row `first` on whose particle is flagged in `held`: tissue the
+// forceps hold goes where the jaws take it, and the jaws are kept out of these surfaces (the
+// instruments' stops). A held particle pushed out by a surface while the grasp pulls it in would
+// be two rigid rows fighting, settled by the solver's splitting instead of the physics (the
+// forceps pulling fat against the heart read half the force of a finer solve). No allocation.
+void drop_held_rows(physics::ContactSet& out, std::size_t first,
+                    std::span<const std::uint8_t> held);
 
 }  // namespace imasim::tissue
