@@ -31,7 +31,7 @@ LiveConsoleParams test_params() {
   return p;
 }
 
-// A model pressing a fascia plane 2 mm above the hand's origin (normal +z): 0.6 N of eq. 17.
+// A model pressing the chest wall's plane 2 mm above the hand's origin (normal +z): 2 N of eq. 17.
 std::array<haptics::LocalModel, 2> pressing(double now_s, std::uint64_t step) {
   std::array<haptics::LocalModel, 2> m;
   for (haptics::LocalModel& model : m) {
@@ -40,7 +40,7 @@ std::array<haptics::LocalModel, 2> pressing(double now_s, std::uint64_t step) {
     model.contact_count = 1;
     model.contacts[0].point = Vec3(0, 0, 0.002);
     model.contacts[0].normal = Vec3::UnitZ();
-    model.contacts[0].tissue = haptics::TissueKind::fascia;
+    model.contacts[0].tissue = haptics::TissueKind::chest_wall;
   }
   return m;
 }
@@ -132,7 +132,7 @@ TEST(DeviceLoss, TheForceIsZeroFromTheVeryTickADeviceVanishes) {
   const ConsoleInput after = console.latest_input();
   console.stop();
 
-  // Pressing 2 mm: eq. 17's 0.6 N on each hand before; from the loss's own tick, nothing.
+  // Pressing 2 mm: eq. 17's 2 N on each hand before; from the loss's own tick, nothing.
   EXPECT_GT(device->largest_before_, Real(0.5));
   ASSERT_GT(device->gone_at_s_, 0.0);
   EXPECT_GT(device->sent_after_, 50u);  // two hands a tick for about 0.1 s

@@ -68,7 +68,7 @@ TEST(TopologyChange, RemovingTrianglesRetiresTheirVerticesAndRenumbersTheRest) {
   const Vec3 kept_point = rest_point(w, m, w.visuals[0].bindings[0]);
   const Vec3 lost_point = point_now(w, m, w.visuals[0].bindings[1]);
   // Vertex 0 drove a particle of the sheet through a coupling; vertex 4 another.
-  w.couplings.push_back({"test", {{0, 8}, {4, 2}}, Real(0.01), true, Real(0.8)});
+  w.couplings.push_back({"test", {{0, 8}, {4, 2}}, Real(0.01), tissue::Beta::one, Real(0.8)});
   const std::size_t distance_before = w.state.constraints.distance.size();
   const std::size_t dihedral_before = w.state.constraints.dihedral.size();
 
@@ -143,7 +143,7 @@ TEST(TopologyChange, RefusedRemovalsLeaveTheWorldAsItWas) {
   w.held[0] = 1;  // the forceps hold vertex 0
   expect_refused(w, {0, 1}, "held by an instrument");
   w.held[0] = 0;
-  w.couplings.push_back({"drives vertex 0", {{4, 0}}, Real(0.01), true, Real(0.8)});
+  w.couplings.push_back({"drives vertex 0", {{4, 0}}, Real(0.01), tissue::Beta::one, Real(0.8)});
   expect_refused(w, {0, 1}, "moved by coupling drives vertex 0");
   EXPECT_EQ(tissue::first_topology_defect(w, 0, {}), "");
 }
@@ -232,12 +232,13 @@ TEST(FasciaFragments, WhatIsLargeFixedHeldOrDrivenStays) {
   }
   {  // a coupling moves it after the sheet
     tissue::TissueWorld w = sheet_and_square(0.002);
-    w.couplings.push_back({"sheet->square", {{12, 26}}, Real(0.01), true, Real(0.8)});
+    w.couplings.push_back({"sheet->square", {{12, 26}}, Real(0.01), tissue::Beta::one, Real(0.8)});
     EXPECT_EQ(pieces_taken(w), 0u);
   }
   {  // a coupling from it moves the sheet: it holds nothing, so it goes, and the pair with it
     tissue::TissueWorld w = sheet_and_square(0.002);
-    w.couplings.push_back({"square->sheet", {{26, 12}, {6, 12}}, Real(0.01), true, Real(0.8)});
+    w.couplings.push_back(
+        {"square->sheet", {{26, 12}, {6, 12}}, Real(0.01), tissue::Beta::one, Real(0.8)});
     EXPECT_EQ(pieces_taken(w), 1u);
     ASSERT_EQ(w.couplings[0].pairs.size(), 1u);
     EXPECT_EQ(w.couplings[0].pairs[0].first, 6u);

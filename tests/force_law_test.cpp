@@ -93,10 +93,17 @@ TEST(ForceLaw, TheNormalNeedNotBeAnAxis) {
   EXPECT_TRUE(f.tangential.isApprox(-(0.2 * 1.22 + 0.5) * slide.normalized(), 1e-12));
 }
 
+// The fascia's and the fat's k_d are the stiffness a hook's tip meets on fat: Boussinesq's rigid
+// punch, 2 a E / (1 - nu^2), with the tip's a = 0.5 mm, nu = 0.5 and adipose tissue's E = 3.25 kPa
+// (Samani et al. 2007); the stiffer tissues follow in order.
 TEST(ForceLaw, DefaultsOrderTheTissuesAndGiveThermalOnlyInAMode) {
   const ForceModelParams p = default_force_model_params();
-  EXPECT_LT(p.of(TissueKind::fat).stiffness, p.of(TissueKind::fascia).stiffness);
-  EXPECT_LT(p.of(TissueKind::fascia).stiffness, p.of(TissueKind::chest_wall).stiffness);
+  const double punch = 2 * 0.0005 * 3250 / (1 - 0.5 * 0.5);  // 4.33 N/m
+  EXPECT_NEAR(p.of(TissueKind::fascia).stiffness, punch, 0.01 * punch);
+  EXPECT_NEAR(p.of(TissueKind::fat).stiffness, punch, 0.01 * punch);
+  EXPECT_LT(p.of(TissueKind::fascia).stiffness, p.of(TissueKind::ima).stiffness);
+  EXPECT_LT(p.of(TissueKind::ima).stiffness, p.of(TissueKind::heart).stiffness);
+  EXPECT_LT(p.of(TissueKind::heart).stiffness, p.of(TissueKind::chest_wall).stiffness);
   EXPECT_EQ(p.thermal_of(TissueKind::fascia, CauteryMode::off), nullptr);
   ASSERT_NE(p.thermal_of(TissueKind::fascia, CauteryMode::coag), nullptr);
   EXPECT_GT(p.thermal_of(TissueKind::fascia, CauteryMode::coag)->coefficient,

@@ -56,8 +56,10 @@ TEST(Press, TheHeldHeartStopsTheToolAndTheHandFeelsTheTablesForce) {
 }
 
 // The membrane gives way and pushes back: the tool goes in with the device, and the force grows
-// with every millimetre (measured 0.0040, 0.0063, 0.0094, 0.0142, 0.0221 N at 1-5 mm).
-TEST(Press, TheFasciaPushesBackMoreTheDeeperItIsPressed) {
+// with every millimetre (measured 0.0040, 0.0063, 0.0093, 0.0142, 0.0224 N at 1-5 mm). It is
+// within 30 % of the table's k_d d (issue 41): the fascia's k_d is the stiffness the hook's tip
+// meets, 4.3 N/m (measured 94, 73, 72, 83, 104 %; with the old 300 N/m, 1.3-1.5 %).
+TEST(Press, TheFasciaPushesBackMoreTheDeeperItIsPressedAndAsTheTableSays) {
   const nlohmann::json out = press("--tissue fascia --depth-mm 1,2,3,4,5");
   ASSERT_EQ(out["depths"].size(), 5u);
   double previous = 0;
@@ -65,6 +67,9 @@ TEST(Press, TheFasciaPushesBackMoreTheDeeperItIsPressed) {
     EXPECT_GT(row["force_n"].get<double>(), previous) << row.dump();
     previous = row["force_n"].get<double>();
     EXPECT_GT(row["tool_depth_mm"].get<double>(), 0.5 * row["depth_mm"].get<double>());
+    EXPECT_NEAR(row["force_n"].get<double>(), row["law_n"].get<double>(),
+                0.3 * row["law_n"].get<double>())
+        << row.dump();
   }
 }
 

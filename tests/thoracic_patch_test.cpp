@@ -1,6 +1,10 @@
 // The thoracic-wall patch: fascia, IMA (coarse + fine), strands, support, coupled in one world.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
 #include "physics/constraint_system.hpp"
 #include "physics/executor.hpp"
 #include "precision.hpp"
@@ -171,10 +175,58 @@ TEST(ThoracicPatch, TheVesselFollowsTheFatWhenCoupled) {
   }
   OffsetCoupling& to_ima = w.couplings[0];
   ASSERT_EQ(to_ima.name, "fat->ima");
-  to_ima.active = true;
+  to_ima.beta = Beta::one;
   for (const OffsetCoupling& c : w.couplings)
     apply_coupling(c, w.state.particles);
   EXPECT_GT(max_displacement(w, w.meshes[patch.ima]), 0.001);
+}
+
+// Eq. 9's beta as the coupling state indicator (issue 41): the fat around the vessel, grasped
+// beside its middle and retracted 8 mm into the cavity, takes the vessel with it (the vessel
+// follows the held fat's offset, clamped to lambda_max); with beta always 0 it stays where it
+// is. Let go, the vessel relaxes to rest (eq. 9, beta = 0).
+Real retract_the_fat_around_the_vessel(Beta beta, bool let_go) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  run(patch, 200);
+  TissueWorld& w = patch.world;
+  w.couplings[0].beta = beta;
+  const MeshObject& ima = w.meshes[patch.ima];
+  const std::vector<Vec3> settled = w.state.particles.position;
+  const StrandSet& fat = w.strands[patch.ima_fat];
+  const Real middle = Real(0.075);  // the vessel runs along z from 0 to 0.15 m
+  const physics::MaterialId grip = w.model.add_material(physics::ConstraintMaterial::xpbd(0));
+  std::vector<physics::AttachmentHandle> holds;
+  for (std::uint32_t s = 0; s < fat.strand_count; ++s) {
+    const std::uint32_t i = fat.particle(s, 1);
+    if (std::abs(w.state.particles.rest_position[i].z() - middle) > Real(0.004)) continue;
+    holds.push_back(physics::add_attachment(w.state.constraints, w.state.particles, i,
+                                            settled[i] + Vec3(0, -0.008, 0), grip));
+    w.held[i] = 1;
+  }
+  EXPECT_GT(holds.size(), 4u);
+  physics::prepare_state(w.model, w.state);
+  run(patch, 200);
+  Real moved = 0;  // the vessel's largest displacement from where it had settled (unit: m)
+  for (std::uint32_t k = 0; k < ima.particle_count; ++k) {
+    const std::uint32_t i = ima.first_particle + k;
+    moved = std::max(moved, (w.state.particles.position[i] - settled[i]).norm());
+  }
+  if (!let_go) return moved;
+  for (const physics::AttachmentHandle h : holds)
+    w.state.constraints.attachment.remove(h);
+  std::fill(w.held.begin(), w.held.end(), std::uint8_t(0));
+  physics::prepare_state(w.model, w.state);
+  run(patch, 400);
+  EXPECT_LT(vessel_energy(w, ima), 1e-12);  // (J)
+  return max_displacement(w, ima);
+}
+
+TEST(ThoracicPatch, RetractingTheFatMovesTheVesselAndLetGoItComesToRest) {
+  const Real coupled = retract_the_fat_around_the_vessel(Beta::manipulated, false);
+  EXPECT_GT(coupled, 0.004);
+  EXPECT_LE(coupled, 0.0101);  // lambda_max
+  EXPECT_LT(retract_the_fat_around_the_vessel(Beta::zero, false), 1e-6);
+  EXPECT_LT(retract_the_fat_around_the_vessel(Beta::manipulated, true), 1e-7);
 }
 
 TEST(ThoracicPatch, DeterministicAcrossThreadCounts) {

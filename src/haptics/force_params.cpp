@@ -18,8 +18,10 @@ const ThermalForceParams* ForceModelParams::thermal_of(TissueKind kind, CauteryM
 ForceModelParams default_force_model_params() {
   ForceModelParams p;
   //          stiffness (N/m), damping (N s/m), friction (-), cutting resistance (N s/m)
-  p.contact[std::size_t(TissueKind::fascia)] = {300, 2, 0.2, 5};
-  p.contact[std::size_t(TissueKind::fat)] = {100, 1, 0.1, 2};
+  // Fascia and fat: the stiffness a hook's tip meets on fat (Boussinesq's punch on Samani's
+  // 3.25 kPa), damped with the 7-10 ms time constants the stiffer values had.
+  p.contact[std::size_t(TissueKind::fascia)] = {4.3, 0.03, 0.2, 5};
+  p.contact[std::size_t(TissueKind::fat)] = {4.3, 0.04, 0.1, 2};
   p.contact[std::size_t(TissueKind::ima)] = {200, 2, 0.15, 8};
   p.contact[std::size_t(TissueKind::heart)] = {400, 3, 0.1, 5};
   p.contact[std::size_t(TissueKind::chest_wall)] = {1000, 5, 0.3, 10};

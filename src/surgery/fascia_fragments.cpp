@@ -51,10 +51,15 @@ FragmentRemoval vaporise_free_fragments(tissue::TissueWorld& w, const FragmentPa
     if (P.is_fixed(i) || (i < w.held.size() && w.held[i])) hold_particle(i);
   }
   // A coupling moves its destination after its source (eq. 8-9): a piece that is a destination
-  // is held; one that is only a source holds nothing.
+  // is held; one that is only a source holds nothing. A destination that held fat drives (beta
+  // by manipulation) is held only while that fat is held, and one that is left alone then (no
+  // decay) is not moved at all.
+  const tissue::CouplingFlags flags{w.held, w.manipulated};
   for (const tissue::OffsetCoupling& c : w.couplings) {
-    for (const auto& pair : c.pairs)
-      hold_particle(pair.second);
+    for (const auto& pair : c.pairs) {
+      const bool moved = tissue::pair_follows(c, pair.first, flags) || c.decay != 1;
+      if (c.beta != tissue::Beta::manipulated || moved) hold_particle(pair.second);
+    }
   }
   // The sheet: the largest piece, never removed.
   std::uint32_t sheet = 0;

@@ -7,13 +7,17 @@
 namespace imasim::tissue {
 
 void apply_coupling(const OffsetCoupling& c, physics::Particles& P, const std::vector<Vec3>& ref,
-                    std::span<const Vec3> start, Real dt, std::span<const std::uint8_t> held) {
+                    std::span<const Vec3> start, Real dt, const CouplingFlags& flags,
+                    PairsApplied which) {
   const bool velocities = !start.empty() && dt > 0;
   const Real inverse_dt = velocities ? 1 / dt : Real(0);
   for (const auto& [j, i] : c.pairs) {
-    if (i < held.size() && held[i]) continue;
+    if (destination_left(c, i, flags) || P.is_fixed(i)) continue;
+    const bool follows = pair_follows(c, j, flags);
+    if (which == PairsApplied::following && !follows) continue;
+    if (which == PairsApplied::relaxing && (follows || c.decay == 1)) continue;
     Vec3 target;
-    if (!c.active) {  // eq. 9, beta = 0
+    if (!follows) {  // eq. 9, beta = 0
       target = ref[i] + c.decay * (P.position[i] - ref[i]);
     } else {
       const Vec3 offset = P.position[j] - ref[j];  // O_j
@@ -27,11 +31,12 @@ void apply_coupling(const OffsetCoupling& c, physics::Particles& P, const std::v
   }
 }
 
-void append_follow_rows(const OffsetCoupling& c, const std::vector<Vec3>& ref,
-                        std::span<const std::uint8_t> held, std::vector<physics::FollowRow>& out) {
-  if (!c.active) return;
+void append_follow_rows(const OffsetCoupling& c, const physics::Particles& P,
+                        const std::vector<Vec3>& ref, const CouplingFlags& flags,
+                        std::vector<physics::FollowRow>& out) {
+  if (c.beta == Beta::zero) return;
   for (const auto& [j, i] : c.pairs) {
-    if (i < held.size() && held[i]) continue;
+    if (!pair_follows(c, j, flags) || destination_left(c, i, flags) || P.is_fixed(i)) continue;
     out.push_back({j, i, ref[j], ref[i], c.lambda_max});
   }
 }

@@ -79,24 +79,25 @@ ThoracicPatch make_thoracic_patch(const ThoracicPatchParams& p) {
   for (std::uint32_t k = 0; k < fascia.particle_count; ++k) {
     fascia_particles.push_back(fascia.first_particle + k);
   }
+  // The fat against the vessel: each strand's interior particle next to its end there.
+  std::vector<std::uint32_t> fat_at_ima;
   const StrandSet& ima_strands = w.strands[patch.ima_fat];
-  std::vector<std::uint32_t> fat_at_ima, fat_at_wall;  // first and last interior particles
-  for (std::uint32_t s = 0; s < ima_strands.strand_count; ++s) {
+  for (std::uint32_t s = 0; s < ima_strands.strand_count; ++s)
     fat_at_ima.push_back(ima_strands.particle(s, 1));
-    fat_at_wall.push_back(ima_strands.particle(s, ima_strands.segments - 1));
-  }
   const auto fascia_fat = interior_particles(w.strands[patch.fascia_fat]);
   const physics::Particles& P = w.state.particles;
   const Real r = p.coupling_radius, lmax = p.coupling_lambda_max;
-  // Applied in this order, the couplings form no loop: the fat towards the wall drives the vessel
-  // (beta = 1) or the vessel relaxes (beta = 0, the default until engaged), then the vessel
-  // drives the fat against it, and the fascia the fat under it.
+  // Eq. 8: the vessel drives the fat against it unless that fat is manipulated, and the fascia
+  // the fat under it. Eq. 9: the fat drives the vessel while it is manipulated (beta = 1), and
+  // the vessel relaxes otherwise (beta = 0). A strand by the vessel is either driven by it or,
+  // held, drives it: the couplings form no loop.
   w.couplings = {
-      {"fat->ima", nearest_source_pairs(P, fat_at_wall, ima_particles, 2 * r), lmax, false,
-       Real(0.8)},
-      {"ima->fat", nearest_source_pairs(P, ima_particles, fat_at_ima, r), lmax, true, Real(0.8)},
-      {"fascia->fat", nearest_source_pairs(P, fascia_particles, fascia_fat, r), lmax, true,
-       Real(0.8)},
+      {"fat->ima", nearest_source_pairs(P, fat_at_ima, ima_particles, 2 * r), lmax,
+       Beta::manipulated, Real(0.8), false},
+      {"ima->fat", nearest_source_pairs(P, ima_particles, fat_at_ima, r), lmax, Beta::one,
+       Real(0.8), true},
+      {"fascia->fat", nearest_source_pairs(P, fascia_particles, fascia_fat, r), lmax, Beta::one,
+       Real(0.8), false},
   };
   finish_setup(w);
   return patch;

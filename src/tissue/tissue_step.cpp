@@ -1,5 +1,6 @@
 #include "tissue/tissue_step.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -37,6 +38,7 @@ void finish_setup(TissueWorld& world) {
   world.xsph_weight.resize(world.state.particles.size());
   world.reference = world.state.particles.rest_position;
   world.held.resize(world.state.particles.size(), 0);
+  world.manipulated.resize(world.state.particles.size(), 0);
   // Contacts are gathered every step: room for two per particle, so stepping does not allocate.
   world.state.contacts.rows.reserve(2 * world.state.particles.size());
   std::size_t pairs = 0;
@@ -47,12 +49,35 @@ void finish_setup(TissueWorld& world) {
   place_strand_ends(world);
 }
 
+namespace {
+
+// world.manipulated: every particle of a strand of which an instrument holds a particle.
+void mark_manipulated(TissueWorld& world) {
+  std::fill(world.manipulated.begin(), world.manipulated.end(), std::uint8_t(0));
+  for (const StrandSet& set : world.strands) {
+    const std::uint32_t n = set.segments + 1;
+    for (std::uint32_t s = 0; s < set.strand_count; ++s) {
+      const std::uint32_t first = set.particle(s, 0);
+      bool held = false;
+      for (std::uint32_t k = 0; k < n && !held; ++k)
+        held = first + k < world.held.size() && world.held[first + k];
+      if (!held) continue;
+      for (std::uint32_t k = 0; k < n; ++k)
+        if (first + k < world.manipulated.size()) world.manipulated[first + k] = 1;
+    }
+  }
+}
+
+}  // namespace
+
 physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& exec) {
   Stopwatch clock;
-  // Active couplings (eq. 8, eq. 9 with beta = 1) act inside the solve.
+  mark_manipulated(world);
+  const CouplingFlags flags{world.held, world.manipulated};
+  // The pairs that follow their source (eq. 8, eq. 9 with beta = 1) act inside the solve.
   world.state.follows.clear();
   for (const OffsetCoupling& c : world.couplings)
-    append_follow_rows(c, world.reference, world.held, world.state.follows);
+    append_follow_rows(c, world.state.particles, world.reference, flags, world.state.follows);
   const double follow_rows = clock.lap();
   physics::StepResult r = physics::step(world.model, world.state, exec);
   clock.lap();
@@ -61,9 +86,8 @@ physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& 
   smooth_strand_velocities(world);
   // eq. 9 with beta = 0: the decay after the step, with the velocity made to agree.
   for (const OffsetCoupling& c : world.couplings) {
-    if (c.active) continue;
     apply_coupling(c, world.state.particles, world.reference, world.state.scratch.saved_position,
-                   world.model.solver.dt, world.held);
+                   world.model.solver.dt, flags, PairsApplied::relaxing);
   }
   r.profile[physics::Stage::coupling] += clock.lap();
   return r;

@@ -111,6 +111,9 @@ struct TissueWorld {
   // Per particle: held by an instrument (grasped). Held particles follow the jaws through their
   // attachments, not the couplings (eq. 8-9), so a grasp is not undone every step.
   std::vector<std::uint8_t> held;
+  // Per particle, refreshed each step from `held`: of a strand a held particle belongs to. Such
+  // fat drives the surfaces it is coupled to (eq. 9's beta, coupling.hpp).
+  std::vector<std::uint8_t> manipulated;
 };
 
 }  // namespace imasim::tissue

@@ -403,6 +403,7 @@ TopologyChange remove_mesh_triangles(TissueWorld& w, std::uint32_t mesh,
     }
   }
   for (const OffsetCoupling& c : w.couplings) {
+    if (c.beta == Beta::manipulated) continue;  // only while held fat drives it: let go below
     for (const auto& pair : c.pairs) {
       if (retiring(pair.second)) {
         change.status = EditStatus::invalid;
@@ -491,9 +492,14 @@ TopologyChange remove_mesh_triangles(TissueWorld& w, std::uint32_t mesh,
     P.velocity[i] = Vec3::Zero();
     P.predicted[i] = P.position[i];
   }
-  // What a retired vertex drove through a coupling is no longer driven by it.
-  for (OffsetCoupling& c : w.couplings)
-    std::erase_if(c.pairs, [&](const auto& pair) { return retiring(pair.first); });
+  // What a retired vertex drove through a coupling is no longer driven by it, and a retired
+  // vertex that held fat would drive (beta by manipulation) is driven no more.
+  for (OffsetCoupling& c : w.couplings) {
+    const bool let_go = c.beta == Beta::manipulated;
+    std::erase_if(c.pairs, [&](const auto& pair) {
+      return retiring(pair.first) || (let_go && retiring(pair.second));
+    });
+  }
   add_edge_constraints(w, m, touched, change);
   geometry::compute_vertex_normals(mesh_positions(w, m), m.triangles, m.normals);
   return change;
