@@ -12,13 +12,6 @@ using surgery::Tissue;
 // from the device (which the coupling may take it back over within the step) (unit: m).
 constexpr Real kStopReach = Real(0.002);
 
-// The stop's Coulomb mu, the surface's eq. 18 mu. The spring carries the surface's push, so the
-// tool sticks while the device's offset lies within the cone |o_t| <= mu |o_n|, whatever the
-// coupling's k: the same cone the hand's eq. 18 renders at the surface's own k_d.
-Real stop_friction(const SurgicalSession& s, Tissue surface) {
-  return s.params.proxy.friction[std::size_t(surface)];
-}
-
 void add_heart_rows(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real reach,
                     std::uint32_t body, std::vector<physics::BodyStopRow>& out) {
   tissue::HeartField& h = s.scene.heart;
@@ -39,7 +32,10 @@ void add_heart_rows(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real rea
         q.bary[0] * h.previous[t[0]] + q.bary[1] * h.previous[t[1]] + q.bary[2] * h.previous[t[2]];
     r.normal = n.normal;
     r.margin = s.params.tool_clearance;
-    r.static_friction = r.kinetic_friction = stop_friction(s, Tissue::heart);
+    // The surface's eq. 18 mu: the spring carries its push, so the tool sticks while the device's
+    // offset lies within the cone |o_t| <= mu |o_n|, whatever the coupling's k.
+    r.static_friction = r.kinetic_friction =
+        s.params.proxy.friction[static_cast<std::size_t>(Tissue::heart)];
     out.push_back(r);
   }
 }
@@ -61,7 +57,8 @@ void add_wall_row(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real reach
   row.surface0 = row.surface1 = wall.origin + r.dot(axis) * axis + wall.radius * outward;
   row.normal = -outward;  // the cavity's side
   row.margin = s.params.tool_clearance;
-  row.static_friction = row.kinetic_friction = stop_friction(s, Tissue::chest_wall);
+  row.static_friction = row.kinetic_friction =
+      s.params.proxy.friction[static_cast<std::size_t>(Tissue::chest_wall)];
   out.push_back(row);
 }
 
