@@ -1,0 +1,238 @@
+#include "physics/implicit_membrane.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace imasim::physics {
+
+namespace {
+
+std::string edge_name(std::size_t e) {
+  return "implicit membrane: edge " + std::to_string(e);
+}
+
+// The Hessian of one edge's energy with respect to its first end (unit: N/m): the regime's
+// stiffness along the edge, the tension over the length across it (none in compression, which
+// would make the matrix indefinite).
+Mat3 edge_stiffness(const StiffeningSpring& s, const Vec3& d) {
+  const Real l = d.norm();
+  if (!(l > Real(1e-12))) return Mat3::Zero();
+  const Vec3 n = d / l;
+  const Mat3 along = n * n.transpose();
+  const Real across = std::max(Real(0), tension(s, l)) / l;
+  return stiffness_at(s, l) * along + across * (Mat3::Identity() - along);
+}
+
+}  // namespace
+
+ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
+                                   std::vector<MembraneEdge> edges, Real h)
+    : mass_(std::move(mass)), fixed_(std::move(fixed)), edges_(std::move(edges)), h_(h) {
+  const std::size_t n = mass_.size();
+  if (fixed_.size() != n)
+    throw std::invalid_argument("implicit membrane: " + std::to_string(fixed_.size()) +
+                                " fixed flags for " + std::to_string(n) + " vertices");
+  if (!(h_ > 0)) throw std::invalid_argument("implicit membrane: step h must be positive");
+  free_index_.assign(n, kFixed);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (fixed_[v]) continue;
+    if (!(mass_[v] > 0))
+      throw std::invalid_argument("implicit membrane: free vertex " + std::to_string(v) +
+                                  " has no mass");
+    free_index_[v] = static_cast<std::uint32_t>(free_vertices_.size());
+    free_vertices_.push_back(static_cast<std::uint32_t>(v));
+  }
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    const MembraneEdge& edge = edges_[e];
+    const StiffeningSpring& s = edge.spring;
+    if (edge.i >= n || edge.j >= n || edge.i == edge.j)
+      throw std::invalid_argument(edge_name(e) + " names vertices out of range or twice");
+    if (!(s.rest_length > 0) || !(s.toe_stiffness > 0) ||
+        !(s.linear_stiffness >= s.toe_stiffness) || !(s.toe_strain > 0))
+      throw std::invalid_argument(edge_name(e) +
+                                  ": rest length and toe stiffness must be positive, the linear "
+                                  "stiffness at least the toe's, the toe strain positive");
+  }
+
+  // The pattern: full 3 x 3 blocks on every free row's diagonal and between the free ends of
+  // every edge, cut or not, so that it never changes.
+  const auto rows = static_cast<Eigen::Index>(3 * free_vertices_.size());
+  std::vector<Eigen::Triplet<Real>> entries;
+  auto add_block = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t r = 0; r < 3; ++r)
+      for (std::uint32_t c = 0; c < 3; ++c)
+        entries.emplace_back(3 * a + r, 3 * b + c, Real(1));
+  };
+  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+    add_block(a, a);
+  for (const MembraneEdge& edge : edges_) {
+    const std::uint32_t a = free_index_[edge.i], b = free_index_[edge.j];
+    if (a != kFixed && b != kFixed) {
+      add_block(a, b);
+      add_block(b, a);
+    }
+  }
+  hessian_.resize(rows, rows);
+  hessian_.setFromTriplets(entries.begin(), entries.end());
+  hessian_.makeCompressed();
+  auto block = [&](std::uint32_t a, std::uint32_t b) {
+    Block out;
+    out.fill(-1);
+    if (a == kFixed || b == kFixed) return out;
+    for (std::uint32_t c = 0; c < 3; ++c)
+      for (std::uint32_t r = 0; r < 3; ++r)
+        out[3 * c + r] = &hessian_.coeffRef(3 * a + r, 3 * b + c) - hessian_.valuePtr();
+    return out;
+  };
+  diagonal_.resize(free_vertices_.size());
+  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+    diagonal_[a] = block(a, a);
+  blocks_.resize(edges_.size());
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    const std::uint32_t a = free_index_[edges_[e].i], b = free_index_[edges_[e].j];
+    blocks_[e] = {block(a, a), block(b, b), block(a, b), block(b, a)};
+  }
+  removed_.assign(edges_.size(), 0);
+  x0_.resize(n);
+  y_.resize(n);
+  trial_.resize(n);
+  gradient_.resize(rows);
+  direction_.resize(rows);
+  cholesky_.analyzePattern(hessian_);
+}
+
+Real ImplicitMembrane::potential(std::span<const Vec3> x, std::span<const Vec3> force) const {
+  const Real inverse_h2 = 1 / (h_ * h_);
+  Real phi = 0;  // (unit: J), relative to x = y for the inertial and the external terms
+  for (std::uint32_t v : free_vertices_) {
+    const Vec3 dx = x[v] - y_[v];
+    phi += Real(0.5) * mass_[v] * inverse_h2 * dx.squaredNorm();
+    if (!force.empty()) phi -= force[v].dot(dx);
+  }
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    if (removed_[e]) continue;
+    phi += energy(edges_[e].spring, (x[edges_[e].i] - x[edges_[e].j]).norm());
+  }
+  return phi;
+}
+
+void ImplicitMembrane::gradient(std::span<const Vec3> x, std::span<const Vec3> force) {
+  const Real inverse_h2 = 1 / (h_ * h_);
+  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a) {
+    const std::uint32_t v = free_vertices_[a];
+    Vec3 g = mass_[v] * inverse_h2 * (x[v] - y_[v]);
+    if (!force.empty()) g -= force[v];
+    gradient_.segment<3>(3 * a) = g;
+  }
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    if (removed_[e]) continue;
+    const MembraneEdge& edge = edges_[e];
+    const Vec3 d = x[edge.i] - x[edge.j];
+    const Real l = d.norm();
+    if (!(l > Real(1e-12))) continue;
+    const Vec3 g = tension(edge.spring, l) / l * d;  // dE/dx_i (unit: N)
+    const std::uint32_t a = free_index_[edge.i], b = free_index_[edge.j];
+    if (a != kFixed) gradient_.segment<3>(3 * a) += g;
+    if (b != kFixed) gradient_.segment<3>(3 * b) -= g;
+  }
+}
+
+bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x) {
+  Real* value = hessian_.valuePtr();
+  std::fill(value, value + hessian_.nonZeros(), Real(0));
+  auto add = [&](const Block& block, const Mat3& k, Real sign) {
+    if (block[0] < 0) return;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+        value[block[3 * c + r]] += sign * k(r, c);
+  };
+  const Real inverse_h2 = 1 / (h_ * h_);
+  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+    add(diagonal_[a], mass_[free_vertices_[a]] * inverse_h2 * Mat3::Identity(), 1);
+  for (std::size_t e = 0; e < edges_.size(); ++e) {
+    if (removed_[e]) continue;
+    const Mat3 k = edge_stiffness(edges_[e].spring, x[edges_[e].i] - x[edges_[e].j]);
+    add(blocks_[e].ii, k, 1);
+    add(blocks_[e].jj, k, 1);
+    add(blocks_[e].ij, k, -1);
+    add(blocks_[e].ji, k, -1);
+  }
+  cholesky_.factorize(hessian_);
+  return cholesky_.info() == Eigen::Success;
+}
+
+ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, const Vec3& gravity,
+                                          std::span<const Vec3> force,
+                                          const ImplicitSolveParams& params) {
+  ImplicitStepReport report;
+  for (std::uint32_t u : free_vertices_) {
+    x0_[u] = x[u];
+    y_[u] = x[u] + h_ * v[u] + h_ * h_ * gravity;  // the inertial prediction
+    // The first iterate: the motion carried on, without gravity's h^2 g, which a membrane at
+    // rest does not follow (its tension holds it): starting from y would start 0.25 mm out of
+    // balance at every vertex and cost the stiff membrane a damped Newton step or two.
+    x[u] = x[u] + h_ * v[u];
+  }
+  auto largest_imbalance = [&] {
+    Real largest = 0;
+    for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+      largest = std::max(largest, gradient_.segment<3>(3 * a).norm());
+    return largest;
+  };
+  gradient(x, force);
+  report.residual = largest_imbalance();
+  std::copy(x.begin(), x.end(), trial_.begin());
+  // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
+  // while it converges fast, and refactored when it does not.
+  bool refactor = !factored_;
+  while (report.iterations < params.max_iterations && report.residual > params.tolerance) {
+    if (refactor) {
+      if (!factor_hessian(x)) {
+        report.ok = false;
+        factored_ = false;
+        break;
+      }
+      factored_ = true;
+      ++report.factorizations;
+    }
+    ++report.iterations;
+    direction_ = cholesky_.solve(-gradient_);
+    // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
+    // (whatever iterate it was made at), so the direction descends.
+    const Real phi = potential(x, force);
+    Real slope = 0;  // a plain loop: GCC 12 warns falsely in Eigen's AVX-512 dot product
+    for (Eigen::Index k = 0; k < gradient_.size(); ++k)
+      slope += gradient_[k] * direction_[k];
+    Real alpha = 1;
+    bool accepted = false;
+    for (int halving = 0; halving < 30 && !accepted; ++halving, alpha *= Real(0.5)) {
+      for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+        trial_[free_vertices_[a]] = x[free_vertices_[a]] + alpha * direction_.segment<3>(3 * a);
+      accepted = potential(trial_, force) <= phi + Real(1e-4) * alpha * slope;
+    }
+    if (!accepted) {
+      if (refactor) break;  // a fresh Newton step finds no descent: solved to Phi's rounding
+      refactor = true;
+      continue;
+    }
+    for (std::uint32_t u : free_vertices_)
+      x[u] = trial_[u];
+    const Real before = report.residual;
+    gradient(x, force);
+    report.residual = largest_imbalance();
+    // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate.
+    refactor = report.residual > params.kept_matrix_ratio * before;
+  }
+  for (std::uint32_t u : free_vertices_)
+    v[u] = (x[u] - x0_[u]) / h_;
+  return report;
+}
+
+void ImplicitMembrane::remove_edge(std::size_t e) {
+  if (e >= edges_.size()) return;
+  removed_[e] = 1;
+  factored_ = false;
+}
+
+}  // namespace imasim::physics

@@ -1,0 +1,111 @@
+#pragma once
+// An implicit step for a small membrane (the fascia: about 500 vertices) whose edges are
+// strain-stiffening springs (stiffening_spring.hpp). One backward-Euler step minimises the
+// incremental potential
+//   Phi(x) = 1/(2 h^2) |x - y|_M^2 + sum_e E_e(|x_i - x_j|) - f . x,   y = x0 + h v0 + h^2 g,
+// by Newton's method: the Hessian (M / h^2 plus, per edge, the regime's stiffness along the edge
+// and the tension's T / l across it) is factored by sparse Cholesky (the pattern analysed once at
+// set-up), and each iteration backtracks along its step until Phi falls. The factorisation, the
+// costly part, is kept across iterations and steps while it converges fast (modified Newton).
+// Stiffness costs no substeps and no sweeps: a stiff edge is stiff in the matrix, which the
+// factorisation inverts exactly.
+//
+// Why not projective dynamics (a constant matrix factored once): its matrix gives every edge its
+// axial stiffness in all three directions. A taut membrane pushed across its plane resists with
+// its tension T / l, four orders below the axial stiffness of the fascia's linear region, so the
+// local/global rounds crawl: 8 rounds a 5 ms step left 0.13 N of a 0.3 N press unbalanced and
+// the press 28 % short (docs/physics.md).
+//
+// Across an edge in compression the Hessian takes no (negative) tension term, so the matrix stays
+// positive definite; the line search keeps the step a descent on the true potential. A cut zeroes
+// an edge and keeps the pattern. Fixed vertices are moved by the caller and enter as known.
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "math/types.hpp"
+#include "physics/stiffening_spring.hpp"
+
+namespace imasim::physics {
+
+struct MembraneEdge {
+  std::uint32_t i = 0, j = 0;
+  StiffeningSpring spring;
+};
+
+struct ImplicitSolveParams {
+  // Newton iterations a step at most: 1-2 in a tool's steady press, 15 in the first step of a
+  // flat membrane loaded across its plane, which resists by its mass alone until it sags.
+  std::uint32_t max_iterations = 20;
+  // Stop when no free vertex's force imbalance exceeds this (unit: N).
+  Real tolerance = Real(1e-6);
+  // The factorisation is kept across iterations and steps while each iteration leaves at most
+  // this share of the imbalance before it, and refactored at the iterate when one does not.
+  Real kept_matrix_ratio = Real(0.25);
+};
+
+struct ImplicitStepReport {
+  std::uint32_t iterations = 0;      // Newton iterations taken
+  std::uint32_t factorizations = 0;  // of them, those that refactored the Hessian
+  // Largest force imbalance of the step at a free vertex at its end,
+  // |m (x - y) / h^2 + grad E - f| (unit: N): zero when the step is solved exactly.
+  Real residual = 0;
+  bool ok = true;  // false: a factorisation failed
+};
+
+class ImplicitMembrane {
+ public:
+  // mass (unit: kg) and fixed (1: moved by the caller) per vertex; h the step (unit: s).
+  // Throws std::invalid_argument naming what is wrong (sizes, a free vertex without mass, an
+  // edge out of range, a stiffness or h not positive, a linear stiffness below the toe's).
+  ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
+                   std::vector<MembraneEdge> edges, Real h);
+
+  // One step of length h. x, v: every vertex (unit: m, m/s); the fixed ones' x are their
+  // positions at the step's end and are left as they are, as are their v. force: an external
+  // force per vertex (unit: N), or empty.
+  ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const Vec3& gravity,
+                          std::span<const Vec3> force, const ImplicitSolveParams& params);
+
+  // A cut: edge e pulls no more.
+  void remove_edge(std::size_t e);
+
+  std::size_t vertex_count() const { return mass_.size(); }
+  std::size_t free_count() const { return free_vertices_.size(); }
+  const std::vector<MembraneEdge>& edges() const { return edges_; }
+
+ private:
+  static constexpr std::uint32_t kFixed = 0xffffffffu;
+  using Sparse = Eigen::SparseMatrix<Real>;
+  using Dense = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
+  // The value indices of a 3 x 3 block, column by column; -1 where an end is fixed.
+  using Block = std::array<std::ptrdiff_t, 9>;
+  struct EdgeBlocks {
+    Block ii{}, jj{}, ij{}, ji{};
+  };
+
+  // Phi at x, and its gradient over the free rows into gradient_.
+  Real potential(std::span<const Vec3> x, std::span<const Vec3> force) const;
+  void gradient(std::span<const Vec3> x, std::span<const Vec3> force);
+  bool factor_hessian(std::span<const Vec3> x);
+
+  std::vector<Real> mass_;
+  std::vector<std::uint8_t> fixed_;
+  std::vector<MembraneEdge> edges_;
+  std::vector<std::uint8_t> removed_;
+  Real h_ = 0;
+  std::vector<std::uint32_t> free_index_;     // per vertex: its block row, or kFixed
+  std::vector<std::uint32_t> free_vertices_;  // per block row: its vertex
+  std::vector<Block> diagonal_;               // per block row
+  std::vector<EdgeBlocks> blocks_;
+  Sparse hessian_;
+  Eigen::SimplicialLDLT<Sparse> cholesky_;
+  bool factored_ = false;  // cholesky_ holds a factorisation to keep
+  std::vector<Vec3> x0_, y_, trial_;
+  Dense gradient_, direction_;
+};
+
+}  // namespace imasim::physics

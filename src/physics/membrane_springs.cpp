@@ -1,0 +1,54 @@
+#include "physics/membrane_springs.hpp"
+
+#include <cmath>
+
+#include "geometry/edge_adjacency.hpp"
+
+namespace imasim::physics {
+
+namespace {
+
+Real triangle_area(const geometry::TriangleMesh& mesh, std::uint32_t f) {
+  const auto& t = mesh.triangles[f];
+  const Vec3& a = mesh.vertices[t[0]];
+  return Real(0.5) * (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).norm();
+}
+
+}  // namespace
+
+std::vector<MembraneEdge> membrane_springs(const geometry::TriangleMesh& mesh,
+                                           const StiffeningMembrane& material) {
+  const geometry::EdgeAdjacency adjacency = geometry::build_edge_adjacency(mesh);
+  std::vector<MembraneEdge> springs;
+  springs.reserve(adjacency.edges.size());
+  for (const geometry::MeshEdge& e : adjacency.edges) {
+    Real area = 0;
+    for (std::uint32_t f : e.faces)
+      if (f != geometry::kNoFace) area += triangle_area(mesh, f);
+    const Real length2 = (mesh.vertices[e.a] - mesh.vertices[e.b]).squaredNorm();
+    // k_e = E t sum_T A_T / |e|^2 (unit: N/m)
+    const Real per_modulus = material.thickness * area / length2;
+    MembraneEdge spring;
+    spring.i = e.a;
+    spring.j = e.b;
+    spring.spring.rest_length = std::sqrt(length2);
+    spring.spring.toe_stiffness = material.toe_modulus * per_modulus;
+    spring.spring.linear_stiffness = material.linear_modulus * per_modulus;
+    spring.spring.toe_strain = material.toe_strain;
+    springs.push_back(spring);
+  }
+  return springs;
+}
+
+std::vector<Real> membrane_masses(const geometry::TriangleMesh& mesh,
+                                  const StiffeningMembrane& material) {
+  std::vector<Real> mass(mesh.vertices.size(), Real(0));
+  for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Real share = material.density * material.thickness * triangle_area(mesh, f) / 3;
+    for (std::uint32_t v : mesh.triangles[f])
+      mass[v] += share;
+  }
+  return mass;
+}
+
+}  // namespace imasim::physics
