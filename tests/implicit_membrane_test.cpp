@@ -81,7 +81,7 @@ TEST(ImplicitMembrane, AHangingChainRestsWhereEachSpringCarriesTheWeightBelowIt)
   ImplicitStepReport report;
   // 20 s: backward Euler's damping of the chain's slowest mode (about 25 rad/s) is slow.
   for (int step = 0; step < 4000; ++step)
-    report = chain.step(x, v, kGravity, {}, {8, 1e-12});
+    report = chain.step(x, v, {kGravity, {}, {}}, {8, 1e-12});
   ASSERT_TRUE(report.ok);
   EXPECT_LT(report.residual, 1e-12);
   double y = 0;
@@ -107,7 +107,7 @@ TEST(ImplicitMembrane, AVertexCutLooseFallsAsTheDiscreteFreeFall) {
   const Vec3 start = x[2];
   constexpr int steps = 20;
   for (int step = 0; step < steps; ++step)
-    ASSERT_TRUE(chain.step(x, v, kGravity, {}, {}).ok);
+    ASSERT_TRUE(chain.step(x, v, {kGravity, {}, {}}, {}).ok);
   // Backward Euler with nothing but gravity: x_n = x_0 + h^2 g n (n + 1) / 2.
   const double h = 0.005;
   EXPECT_NEAR(x[2].y(), start.y() - 9.81 * h * h * steps * (steps + 1) / 2, 1e-12);
@@ -144,7 +144,7 @@ PressedSquare press_square(double linear_modulus, double h, const ImplicitSolveP
   PressedSquare out;
   for (int k = 1; k <= steps; ++k) {
     force[centre] = Vec3(0, -0.3 * std::min(1.0, k * h / 0.2), 0);
-    const ImplicitStepReport r = membrane.step(x, v, kGravity, force, solve);
+    const ImplicitStepReport r = membrane.step(x, v, {kGravity, force, {}}, solve);
     EXPECT_TRUE(r.ok);
     out.residual = std::max(out.residual, double(r.residual));
     out.most_iterations = std::max(out.most_iterations, r.iterations);
@@ -170,6 +170,73 @@ TEST(ImplicitMembrane, TheFasciasLinearModulusUnderAPointLoadIsConvergedAtOneSte
   // deep (12.7 against 6.5 mm).
   const PressedSquare soft = press_square(0.1e6, 0.005, solve);
   EXPECT_GT(soft.deflection, 1.5 * coarse.deflection);
+}
+
+// A flat hinge, its wings at different places along the edge and heights over it.
+geometry::TriangleMesh flat_hinge() {
+  geometry::TriangleMesh mesh;
+  mesh.vertices = {Vec3(0, 0, 0), Vec3(0.004, 0, 0), Vec3(0.0013, 0, 0.0031),
+                   Vec3(0.0027, 0, -0.0022)};
+  mesh.triangles = {{0, 1, 2}, {1, 0, 3}};
+  return mesh;
+}
+
+Vec3 curvature(const MembraneHinge& h, const std::vector<Vec3>& x) {
+  Vec3 sum = Vec3::Zero();
+  for (int p = 0; p < 4; ++p)
+    sum += h.w[p] * x[h.v[p]];
+  return sum;
+}
+
+TEST(MembraneHinge, VanishesOnAffineImagesAndMeasuresTheDihedralAngle) {
+  const geometry::TriangleMesh mesh = flat_hinge();
+  const std::vector<MembraneHinge> hinges = membrane_hinges(mesh, 2e-5);
+  ASSERT_EQ(hinges.size(), 1u);
+  const MembraneHinge& h = hinges[0];
+  EXPECT_NEAR(h.w[0] + h.w[1] + h.w[2] + h.w[3], 0, 1e-9);
+  EXPECT_LT(curvature(h, mesh.vertices).norm(), 1e-12);
+  // k = D |e|^2 / (A_1 + A_2), the XPBD dihedral row's.
+  const double area = 0.5 * 0.004 * (0.0031 + 0.0022);
+  EXPECT_NEAR(h.stiffness, 2e-5 * 0.004 * 0.004 / area, 1e-15);
+  // An affine image of the rest (a shear and stretch in its plane, turned and moved): flat.
+  Mat3 in_plane;
+  in_plane << 1.3, 0, 0.4, 0, 1, 0, -0.2, 0, 0.8;
+  const Mat3 turn = Eigen::AngleAxis<Real>(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<Vec3> image;
+  for (const Vec3& p : mesh.vertices)
+    image.push_back(turn * in_plane * p + Vec3(0.1, -0.2, 0.3));
+  EXPECT_LT(curvature(h, image).norm(), 1e-12);
+  // A wing turned about the edge by theta: |sum w x| = 2 sin(theta / 2), theta for small bends.
+  for (double theta : {0.01, 0.1, 0.5, 1.0}) {
+    std::vector<Vec3> bent = mesh.vertices;
+    bent[3] = Eigen::AngleAxis<Real>(theta, Vec3::UnitX()) * bent[3];
+    EXPECT_NEAR(curvature(h, bent).norm(), 2 * std::sin(theta / 2), 1e-12) << theta;
+  }
+}
+
+TEST(ImplicitMembrane, AHingeHeldAtItsEdgeCarriesAWingsWeightByBending) {
+  // The edge's ends and one wing fixed, the other wing free under gravity, its edges stiff: it
+  // turns about the edge until its weight's moment m g h3 cos(theta) balances the hinge's
+  // dE/dtheta = d/dtheta (k/2 (2 sin(theta/2))^2) = k sin(theta).
+  const geometry::TriangleMesh mesh = flat_hinge();
+  std::vector<MembraneHinge> hinges = membrane_hinges(mesh, 2e-5);
+  StiffeningSpring stiff;
+  std::vector<MembraneEdge> edges;
+  for (auto [i, j] : {std::pair{0u, 1u}, {0u, 2u}, {1u, 2u}, {0u, 3u}, {1u, 3u}}) {
+    stiff.rest_length = (mesh.vertices[i] - mesh.vertices[j]).norm();
+    stiff.toe_stiffness = stiff.linear_stiffness = 1e6;
+    stiff.toe_strain = 1;
+    edges.push_back({i, j, stiff});
+  }
+  const double m = 1e-4;
+  ImplicitMembrane hinge({1, 1, 1, m}, {1, 1, 1, 0}, edges, 0.005, hinges);
+  std::vector<Vec3> x = mesh.vertices, v(4, Vec3::Zero());
+  for (int step = 0; step < 2000; ++step)
+    ASSERT_TRUE(hinge.step(x, v, {kGravity, {}, {}}, {}).ok);
+  const double h3 = 0.0022, k = hinges[0].stiffness;
+  const double theta = std::atan2(-x[3].y(), -x[3].z());  // the wing's turn about the edge (x)
+  EXPECT_GT(theta, 0.05);
+  EXPECT_NEAR(k * std::sin(theta), m * 9.81 * h3 * std::cos(theta), 1e-3 * m * 9.81 * h3);
 }
 
 TEST(ImplicitMembrane, RefusesWhatItCannotSolveNamingIt) {

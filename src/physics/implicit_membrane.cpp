@@ -24,11 +24,24 @@ Mat3 edge_stiffness(const StiffeningSpring& s, const Vec3& d) {
   return stiffness_at(s, l) * along + across * (Mat3::Identity() - along);
 }
 
+// sum_i w_i x_i: the hinge's curvature normal, theta n for a small bend (unit: 1).
+Vec3 hinge_curvature(const MembraneHinge& hinge, std::span<const Vec3> x) {
+  Vec3 sum = Vec3::Zero();
+  for (std::uint32_t p = 0; p < 4; ++p)
+    sum += hinge.w[p] * x[hinge.v[p]];
+  return sum;
+}
+
 }  // namespace
 
 ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
-                                   std::vector<MembraneEdge> edges, Real h)
-    : mass_(std::move(mass)), fixed_(std::move(fixed)), edges_(std::move(edges)), h_(h) {
+                                   std::vector<MembraneEdge> edges, Real h,
+                                   std::vector<MembraneHinge> hinges)
+    : mass_(std::move(mass)),
+      fixed_(std::move(fixed)),
+      edges_(std::move(edges)),
+      h_(h),
+      hinges_(std::move(hinges)) {
   const std::size_t n = mass_.size();
   if (fixed_.size() != n)
     throw std::invalid_argument("implicit membrane: " + std::to_string(fixed_.size()) +
@@ -55,8 +68,18 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
                                   "stiffness at least the toe's, the toe strain positive");
   }
 
-  // The pattern: full 3 x 3 blocks on every free row's diagonal and between the free ends of
-  // every edge, cut or not, so that it never changes.
+  for (std::size_t k = 0; k < hinges_.size(); ++k) {
+    for (std::uint32_t v : hinges_[k].v)
+      if (v >= n)
+        throw std::invalid_argument("implicit membrane: hinge " + std::to_string(k) +
+                                    " names a vertex out of range");
+    if (!(hinges_[k].stiffness >= 0))
+      throw std::invalid_argument("implicit membrane: hinge " + std::to_string(k) +
+                                  ": stiffness must not be negative");
+  }
+
+  // The pattern: full 3 x 3 blocks on every free row's diagonal, between the free ends of every
+  // edge and between every two free vertices of a hinge, cut or not, so that it never changes.
   const auto rows = static_cast<Eigen::Index>(3 * free_vertices_.size());
   std::vector<Eigen::Triplet<Real>> entries;
   auto add_block = [&](std::uint32_t a, std::uint32_t b) {
@@ -73,7 +96,15 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
       add_block(b, a);
     }
   }
+  for (const MembraneHinge& hinge : hinges_)
+    for (std::uint32_t p = 0; p < 4; ++p)
+      for (std::uint32_t q = 0; q < 4; ++q) {
+        const std::uint32_t a = free_index_[hinge.v[p]], b = free_index_[hinge.v[q]];
+        if (a != kFixed && b != kFixed) add_block(a, b);
+      }
   hessian_.resize(rows, rows);
+  // Duplicates (an edge's block named by its hinges too) are summed, and the values are
+  // overwritten at every factorisation.
   hessian_.setFromTriplets(entries.begin(), entries.end());
   hessian_.makeCompressed();
   auto block = [&](std::uint32_t a, std::uint32_t b) {
@@ -93,6 +124,13 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
     const std::uint32_t a = free_index_[edges_[e].i], b = free_index_[edges_[e].j];
     blocks_[e] = {block(a, a), block(b, b), block(a, b), block(b, a)};
   }
+  hinge_blocks_.resize(hinges_.size());
+  for (std::size_t k = 0; k < hinges_.size(); ++k)
+    for (std::uint32_t p = 0; p < 4; ++p)
+      for (std::uint32_t q = 0; q < 4; ++q)
+        hinge_blocks_[k][4 * p + q] =
+            block(free_index_[hinges_[k].v[p]], free_index_[hinges_[k].v[q]]);
+  hinge_removed_.assign(hinges_.size(), 0);
   removed_.assign(edges_.size(), 0);
   x0_.resize(n);
   y_.resize(n);
@@ -102,7 +140,9 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
   cholesky_.analyzePattern(hessian_);
 }
 
-Real ImplicitMembrane::potential(std::span<const Vec3> x, std::span<const Vec3> force) const {
+Real ImplicitMembrane::potential(std::span<const Vec3> x, const ImplicitLoads& loads,
+                                 Real contact_k) const {
+  const std::span<const Vec3> force = loads.force;
   const Real inverse_h2 = 1 / (h_ * h_);
   Real phi = 0;  // (unit: J), relative to x = y for the inertial and the external terms
   for (std::uint32_t v : free_vertices_) {
@@ -114,10 +154,20 @@ Real ImplicitMembrane::potential(std::span<const Vec3> x, std::span<const Vec3> 
     if (removed_[e]) continue;
     phi += energy(edges_[e].spring, (x[edges_[e].i] - x[edges_[e].j]).norm());
   }
+  for (std::size_t k = 0; k < hinges_.size(); ++k) {
+    if (hinge_removed_[k]) continue;
+    phi += Real(0.5) * hinges_[k].stiffness * hinge_curvature(hinges_[k], x).squaredNorm();
+  }
+  for (const MembraneContact& c : loads.contacts) {
+    const Real gap = std::min(Real(0), c.normal.dot(x[c.vertex] - c.point));
+    phi += Real(0.5) * contact_k * gap * gap;
+  }
   return phi;
 }
 
-void ImplicitMembrane::gradient(std::span<const Vec3> x, std::span<const Vec3> force) {
+void ImplicitMembrane::gradient(std::span<const Vec3> x, const ImplicitLoads& loads,
+                                Real contact_k) {
+  const std::span<const Vec3> force = loads.force;
   const Real inverse_h2 = 1 / (h_ * h_);
   for (std::uint32_t a = 0; a < free_vertices_.size(); ++a) {
     const std::uint32_t v = free_vertices_[a];
@@ -136,9 +186,24 @@ void ImplicitMembrane::gradient(std::span<const Vec3> x, std::span<const Vec3> f
     if (a != kFixed) gradient_.segment<3>(3 * a) += g;
     if (b != kFixed) gradient_.segment<3>(3 * b) -= g;
   }
+  for (std::size_t k = 0; k < hinges_.size(); ++k) {
+    if (hinge_removed_[k]) continue;
+    const MembraneHinge& hinge = hinges_[k];
+    const Vec3 kappa = hinge.stiffness * hinge_curvature(hinge, x);  // (unit: N)
+    for (std::uint32_t p = 0; p < 4; ++p) {
+      const std::uint32_t a = free_index_[hinge.v[p]];
+      if (a != kFixed) gradient_.segment<3>(3 * a) += hinge.w[p] * kappa;
+    }
+  }
+  for (const MembraneContact& c : loads.contacts) {
+    const std::uint32_t a = free_index_[c.vertex];
+    if (a != kFixed)
+      gradient_.segment<3>(3 * a) -= contact_force(c, x[c.vertex], contact_k) * c.normal;
+  }
 }
 
-bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x) {
+bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, const ImplicitLoads& loads,
+                                      Real contact_k) {
   Real* value = hessian_.valuePtr();
   std::fill(value, value + hessian_.nonZeros(), Real(0));
   auto add = [&](const Block& block, const Mat3& k, Real sign) {
@@ -158,13 +223,28 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x) {
     add(blocks_[e].ij, k, -1);
     add(blocks_[e].ji, k, -1);
   }
+  for (std::size_t k = 0; k < hinges_.size(); ++k) {
+    if (hinge_removed_[k]) continue;
+    const MembraneHinge& hinge = hinges_[k];
+    for (std::uint32_t p = 0; p < 4; ++p)
+      for (std::uint32_t q = 0; q < 4; ++q)
+        add(hinge_blocks_[k][4 * p + q],
+            hinge.stiffness * hinge.w[p] * hinge.w[q] * Mat3::Identity(), 1);
+  }
+  for (const MembraneContact& c : loads.contacts) {
+    const std::uint32_t a = free_index_[c.vertex];
+    if (a != kFixed && c.normal.dot(x[c.vertex] - c.point) < 0)
+      add(diagonal_[a], contact_k * c.normal * c.normal.transpose(), 1);
+  }
   cholesky_.factorize(hessian_);
   return cholesky_.info() == Eigen::Success;
 }
 
-ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, const Vec3& gravity,
-                                          std::span<const Vec3> force,
+ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
+                                          const ImplicitLoads& loads,
                                           const ImplicitSolveParams& params) {
+  const Vec3& gravity = loads.gravity;
+  const Real contact_k = params.contact_stiffness;
   ImplicitStepReport report;
   for (std::uint32_t u : free_vertices_) {
     x0_[u] = x[u];
@@ -180,7 +260,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, 
       largest = std::max(largest, gradient_.segment<3>(3 * a).norm());
     return largest;
   };
-  gradient(x, force);
+  gradient(x, loads, contact_k);
   report.residual = largest_imbalance();
   std::copy(x.begin(), x.end(), trial_.begin());
   // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
@@ -188,7 +268,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, 
   bool refactor = !factored_;
   while (report.iterations < params.max_iterations && report.residual > params.tolerance) {
     if (refactor) {
-      if (!factor_hessian(x)) {
+      if (!factor_hessian(x, loads, contact_k)) {
         report.ok = false;
         factored_ = false;
         break;
@@ -200,7 +280,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, 
     direction_ = cholesky_.solve(-gradient_);
     // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
     // (whatever iterate it was made at), so the direction descends.
-    const Real phi = potential(x, force);
+    const Real phi = potential(x, loads, contact_k);
     Real slope = 0;  // a plain loop: GCC 12 warns falsely in Eigen's AVX-512 dot product
     for (Eigen::Index k = 0; k < gradient_.size(); ++k)
       slope += gradient_[k] * direction_[k];
@@ -209,7 +289,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, 
     for (int halving = 0; halving < 30 && !accepted; ++halving, alpha *= Real(0.5)) {
       for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
         trial_[free_vertices_[a]] = x[free_vertices_[a]] + alpha * direction_.segment<3>(3 * a);
-      accepted = potential(trial_, force) <= phi + Real(1e-4) * alpha * slope;
+      accepted = potential(trial_, loads, contact_k) <= phi + Real(1e-4) * alpha * slope;
     }
     if (!accepted) {
       if (refactor) break;  // a fresh Newton step finds no descent: solved to Phi's rounding
@@ -219,7 +299,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, 
     for (std::uint32_t u : free_vertices_)
       x[u] = trial_[u];
     const Real before = report.residual;
-    gradient(x, force);
+    gradient(x, loads, contact_k);
     report.residual = largest_imbalance();
     // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate.
     refactor = report.residual > params.kept_matrix_ratio * before;
@@ -227,6 +307,12 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v, 
   for (std::uint32_t u : free_vertices_)
     v[u] = (x[u] - x0_[u]) / h_;
   return report;
+}
+
+void ImplicitMembrane::remove_hinge(std::size_t k) {
+  if (k >= hinges_.size()) return;
+  hinge_removed_[k] = 1;
+  factored_ = false;
 }
 
 void ImplicitMembrane::remove_edge(std::size_t e) {

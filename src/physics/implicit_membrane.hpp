@@ -2,7 +2,9 @@
 // An implicit step for a small membrane (the fascia: about 500 vertices) whose edges are
 // strain-stiffening springs (stiffening_spring.hpp). One backward-Euler step minimises the
 // incremental potential
-//   Phi(x) = 1/(2 h^2) |x - y|_M^2 + sum_e E_e(|x_i - x_j|) - f . x,   y = x0 + h v0 + h^2 g,
+//   Phi(x) = 1/(2 h^2) |x - y|_M^2 + sum_e E_e(|x_i - x_j|) + sum_k E_k(x) + sum_c E_c(x) - f . x,
+// y = x0 + h v0 + h^2 g, E_k the hinges' bending (MembraneHinge), E_c the contacts' penalties
+// (MembraneContact),
 // by Newton's method: the Hessian (M / h^2 plus, per edge, the regime's stiffness along the edge
 // and the tension's T / l across it) is factored by sparse Cholesky (the pattern analysed once at
 // set-up), and each iteration backtracks along its step until Phi falls. The factorisation, the
@@ -36,6 +38,39 @@ struct MembraneEdge {
   StiffeningSpring spring;
 };
 
+// Bending across an interior edge (v[0], v[1]) between the wings v[2] and v[3], for a membrane
+// flat at rest: E = k / 2 |sum_i w_i x_i|^2. The weights vanish on every affine image of the rest
+// hinge (sum w_i = 0, sum w_i x_i = 0 at rest) and give sum w_i x_i = theta n for a wing turned
+// by a small dihedral angle theta, so E is the XPBD dihedral row's k theta^2 / 2 for small
+// bending; its Hessian, k w_i w_j I, is constant (Bergou et al. 2006's quadratic bending).
+struct MembraneHinge {
+  std::array<std::uint32_t, 4> v{};
+  std::array<Real, 4> w{};  // (unit: 1/m)
+  Real stiffness = 0;       // k = D |e|^2 / (A_1 + A_2) (unit: N m)
+};
+
+// A vertex kept on the positive side of a plane (a rigid surface or a tool, linearised for the
+// step: the caller places the plane where the surface will be at the step's end) by a stiff
+// one-sided spring, energy k/2 min(0, n . (x - p))^2: a penalty the Newton solve sees whole.
+struct MembraneContact {
+  std::uint32_t vertex = 0;
+  Vec3 point = Vec3::Zero();    // on the plane (unit: m)
+  Vec3 normal = Vec3::UnitY();  // unit, out of the surface
+};
+
+// The normal force the contact's surface exerts on its vertex at x (unit: N).
+inline Real contact_force(const MembraneContact& c, const Vec3& x, Real stiffness) {
+  const Real gap = c.normal.dot(x - c.point);
+  return gap < 0 ? -stiffness * gap : Real(0);
+}
+
+// What acts on the membrane during one step besides its springs.
+struct ImplicitLoads {
+  Vec3 gravity = Vec3::Zero();                // (unit: m/s^2)
+  std::span<const Vec3> force;                // per vertex (unit: N), or empty
+  std::span<const MembraneContact> contacts;  // any number, a vertex in several
+};
+
 struct ImplicitSolveParams {
   // Newton iterations a step at most: 1-2 in a tool's steady press, 15 in the first step of a
   // flat membrane loaded across its plane, which resists by its mass alone until it sags.
@@ -45,6 +80,8 @@ struct ImplicitSolveParams {
   // The factorisation is kept across iterations and steps while each iteration leaves at most
   // this share of the imbalance before it, and refactored at the iterate when one does not.
   Real kept_matrix_ratio = Real(0.25);
+  // The contacts' penalty (unit: N/m): a vertex pressed with 0.1 N stays 1 um inside.
+  Real contact_stiffness = Real(1e5);
 };
 
 struct ImplicitStepReport {
@@ -62,16 +99,16 @@ class ImplicitMembrane {
   // Throws std::invalid_argument naming what is wrong (sizes, a free vertex without mass, an
   // edge out of range, a stiffness or h not positive, a linear stiffness below the toe's).
   ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
-                   std::vector<MembraneEdge> edges, Real h);
+                   std::vector<MembraneEdge> edges, Real h, std::vector<MembraneHinge> hinges = {});
 
   // One step of length h. x, v: every vertex (unit: m, m/s); the fixed ones' x are their
-  // positions at the step's end and are left as they are, as are their v. force: an external
-  // force per vertex (unit: N), or empty.
-  ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const Vec3& gravity,
-                          std::span<const Vec3> force, const ImplicitSolveParams& params);
+  // positions at the step's end and are left as they are, as are their v.
+  ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
+                          const ImplicitSolveParams& params);
 
-  // A cut: edge e pulls no more.
+  // A cut: edge e pulls no more; hinge k bends no more.
   void remove_edge(std::size_t e);
+  void remove_hinge(std::size_t k);
 
   std::size_t vertex_count() const { return mass_.size(); }
   std::size_t free_count() const { return free_vertices_.size(); }
@@ -88,9 +125,9 @@ class ImplicitMembrane {
   };
 
   // Phi at x, and its gradient over the free rows into gradient_.
-  Real potential(std::span<const Vec3> x, std::span<const Vec3> force) const;
-  void gradient(std::span<const Vec3> x, std::span<const Vec3> force);
-  bool factor_hessian(std::span<const Vec3> x);
+  Real potential(std::span<const Vec3> x, const ImplicitLoads& loads, Real contact_k) const;
+  void gradient(std::span<const Vec3> x, const ImplicitLoads& loads, Real contact_k);
+  bool factor_hessian(std::span<const Vec3> x, const ImplicitLoads& loads, Real contact_k);
 
   std::vector<Real> mass_;
   std::vector<std::uint8_t> fixed_;
@@ -101,6 +138,9 @@ class ImplicitMembrane {
   std::vector<std::uint32_t> free_vertices_;  // per block row: its vertex
   std::vector<Block> diagonal_;               // per block row
   std::vector<EdgeBlocks> blocks_;
+  std::vector<MembraneHinge> hinges_;
+  std::vector<std::uint8_t> hinge_removed_;
+  std::vector<std::array<Block, 16>> hinge_blocks_;  // (a, b) at 4 a + b
   Sparse hessian_;
   Eigen::SimplicialLDLT<Sparse> cholesky_;
   bool factored_ = false;  // cholesky_ holds a factorisation to keep

@@ -40,6 +40,36 @@ std::vector<MembraneEdge> membrane_springs(const geometry::TriangleMesh& mesh,
   return springs;
 }
 
+std::vector<MembraneHinge> membrane_hinges(const geometry::TriangleMesh& mesh,
+                                           Real bending_stiffness) {
+  const geometry::EdgeAdjacency adjacency = geometry::build_edge_adjacency(mesh);
+  std::vector<MembraneHinge> hinges;
+  for (const geometry::MeshEdge& e : adjacency.edges) {
+    if (!e.is_interior()) continue;
+    MembraneHinge hinge;
+    hinge.v = {e.a, e.b, e.opposite[0], e.opposite[1]};
+    const Vec3& a = mesh.vertices[e.a];
+    const Vec3 edge = mesh.vertices[e.b] - a;
+    const Real length = edge.norm();
+    const Vec3 t = edge / length;
+    // Each wing's place along the edge (s) and its height over it (h): w = 1/h for the wings,
+    // and the edge's ends take what makes the sum and the first moment vanish at rest.
+    Real along = 0;
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 r = mesh.vertices[e.opposite[k]] - a;
+      const Real s = r.dot(t), h = (r - s * t).norm();
+      hinge.w[2 + k] = 1 / h;
+      along += s / h;
+    }
+    hinge.w[1] = -along / length;
+    hinge.w[0] = -hinge.w[1] - hinge.w[2] - hinge.w[3];
+    const Real area = triangle_area(mesh, e.faces[0]) + triangle_area(mesh, e.faces[1]);
+    hinge.stiffness = bending_stiffness * length * length / area;  // (unit: N m)
+    hinges.push_back(hinge);
+  }
+  return hinges;
+}
+
 std::vector<Real> membrane_masses(const geometry::TriangleMesh& mesh,
                                   const StiffeningMembrane& material) {
   std::vector<Real> mass(mesh.vertices.size(), Real(0));

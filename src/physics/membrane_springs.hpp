@@ -22,6 +22,12 @@ struct StiffeningMembrane {
 std::vector<MembraneEdge> membrane_springs(const geometry::TriangleMesh& mesh,
                                            const StiffeningMembrane& material);
 
+// One hinge per interior edge, in build_edge_adjacency's order, for a mesh flat at rest: the
+// weights of MembraneHinge from the rest geometry, k = D |e|^2 / (A_1 + A_2) as the XPBD
+// dihedral rows (membrane_material.hpp). D: the bending stiffness (unit: N m).
+std::vector<MembraneHinge> membrane_hinges(const geometry::TriangleMesh& mesh,
+                                           Real bending_stiffness);
+
 // Lumped masses: a third of each triangle's rho t A to each of its corners (unit: kg).
 std::vector<Real> membrane_masses(const geometry::TriangleMesh& mesh,
                                   const StiffeningMembrane& material);

@@ -6,8 +6,8 @@
 //   k(eps) = k_t + (k_l - k_t) S(s),   S(s) = 3 s^2 - 2 s^3 on [0, 1], 0 below, 1 above,
 //   T(l) = l0 [k_t eps + (k_l - k_t) eps_t I(s)],   I = integral of S (s^3 - s^4 / 2 on [0, 1]),
 //   E(l) = l0^2 [k_t eps^2 / 2 + (k_l - k_t) eps_t^2 J(s)],   J = integral of I.
-// The recruitment is smooth (k is continuous), so Newton's method (implicit_membrane.hpp) does not
-// stall where an edge crosses into its linear region, as it did on a law with a kink there.
+// The recruitment is smooth (k is continuous), so the Hessian of Newton's method
+// (implicit_membrane.hpp) does not jump 26-fold where an edge crosses into its linear region.
 #include <algorithm>
 
 #include "math/types.hpp"
