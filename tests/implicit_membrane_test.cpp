@@ -81,7 +81,7 @@ TEST(ImplicitMembrane, AHangingChainRestsWhereEachSpringCarriesTheWeightBelowIt)
   ImplicitStepReport report;
   // 20 s: backward Euler's damping of the chain's slowest mode (about 25 rad/s) is slow.
   for (int step = 0; step < 4000; ++step)
-    report = chain.step(x, v, {kGravity, {}, {}}, {8, 1e-12});
+    report = chain.step(x, v, {kGravity, {}, {}, {}}, {8, 1e-12});
   ASSERT_TRUE(report.ok);
   EXPECT_LT(report.residual, 1e-12);
   double y = 0;
@@ -107,7 +107,7 @@ TEST(ImplicitMembrane, AVertexCutLooseFallsAsTheDiscreteFreeFall) {
   const Vec3 start = x[2];
   constexpr int steps = 20;
   for (int step = 0; step < steps; ++step)
-    ASSERT_TRUE(chain.step(x, v, {kGravity, {}, {}}, {}).ok);
+    ASSERT_TRUE(chain.step(x, v, {kGravity, {}, {}, {}}, {}).ok);
   // Backward Euler with nothing but gravity: x_n = x_0 + h^2 g n (n + 1) / 2.
   const double h = 0.005;
   EXPECT_NEAR(x[2].y(), start.y() - 9.81 * h * h * steps * (steps + 1) / 2, 1e-12);
@@ -144,7 +144,7 @@ PressedSquare press_square(double linear_modulus, double h, const ImplicitSolveP
   PressedSquare out;
   for (int k = 1; k <= steps; ++k) {
     force[centre] = Vec3(0, -0.3 * std::min(1.0, k * h / 0.2), 0);
-    const ImplicitStepReport r = membrane.step(x, v, {kGravity, force, {}}, solve);
+    const ImplicitStepReport r = membrane.step(x, v, {kGravity, force, {}, {}}, solve);
     EXPECT_TRUE(r.ok);
     out.residual = std::max(out.residual, double(r.residual));
     out.most_iterations = std::max(out.most_iterations, r.iterations);
@@ -232,11 +232,42 @@ TEST(ImplicitMembrane, AHingeHeldAtItsEdgeCarriesAWingsWeightByBending) {
   ImplicitMembrane hinge({1, 1, 1, m}, {1, 1, 1, 0}, edges, 0.005, hinges);
   std::vector<Vec3> x = mesh.vertices, v(4, Vec3::Zero());
   for (int step = 0; step < 2000; ++step)
-    ASSERT_TRUE(hinge.step(x, v, {kGravity, {}, {}}, {}).ok);
+    ASSERT_TRUE(hinge.step(x, v, {kGravity, {}, {}, {}}, {}).ok);
   const double h3 = 0.0022, k = hinges[0].stiffness;
   const double theta = std::atan2(-x[3].y(), -x[3].z());  // the wing's turn about the edge (x)
   EXPECT_GT(theta, 0.05);
   EXPECT_NEAR(k * std::sin(theta), m * 9.81 * h3 * std::cos(theta), 1e-3 * m * 9.81 * h3);
+}
+
+TEST(ImplicitMembrane, ABodyOnItsSpringPressesAVertexAsSpringsInSeries) {
+  // A vertex hung 10 mm under a fixed one on a spring (no gravity); under it a body held by its
+  // coupling to an anchor 2 mm above the vertex's rest, pushing it up through a contact plane
+  // 1 mm above the body's centre. At rest the coupling, the spring (compressed) and the contact's
+  // penalty carry one force in series: f = D / (1/k_b + 1/k_s + 1/k_c), D the overlap the anchor
+  // asks for.
+  StiffeningSpring spring;
+  spring.rest_length = 0.01;
+  spring.toe_stiffness = spring.linear_stiffness = 50;
+  spring.toe_strain = 1;
+  ImplicitMembrane rig({1, 0.001}, {1, 0}, {{0, 1, spring}}, 0.005, {}, 1);
+  std::vector<Vec3> x = {Vec3(0, 0, 0), Vec3(0, -0.01, 0)}, v(2, Vec3::Zero());
+  const double kb = 1000, reach = 0.001;
+  std::vector<MembraneBody> body = {{Vec3(0, -0.01 + 0.002 - reach, 0), kb, 5, Vec3(0, -0.02, 0)}};
+  const ImplicitSolveParams solve;
+  for (int step = 0; step < 400; ++step) {
+    const std::vector<MembraneContact> contact = {
+        {1, body[0].position + Vec3(0, reach, 0), Vec3::UnitY(), 0}};
+    const Vec3 start = body[0].position;
+    ASSERT_TRUE(rig.step(x, v, {Vec3::Zero(), {}, contact, body}, solve).ok);
+    if (step + 1 < 400) continue;
+    const double f =
+        contact_force(contact[0], x[1], solve.contact_stiffness, body[0].position - start);
+    const double expected = 0.002 / (1 / kb + 1 / 50.0 + 1 / solve.contact_stiffness);
+    // To the solve's tolerance (a force imbalance, unit: N).
+    EXPECT_NEAR(f, expected, solve.tolerance);
+    EXPECT_NEAR(kb * (body[0].anchor - body[0].position).y(), f, solve.tolerance);
+    EXPECT_NEAR(50 * (x[1].y() + 0.01), f, solve.tolerance);
+  }
 }
 
 TEST(ImplicitMembrane, RefusesWhatItCannotSolveNamingIt) {

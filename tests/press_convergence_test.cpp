@@ -167,10 +167,9 @@ TEST(PressConvergence, ProxyForceWithFrictionIsWithinFivePercentOfAFinerSolve) {
 
 // The implicit step, one a 5 ms step, on the same mesh, masses and fixed perimeter, its edges
 // at the fascia's toe modulus E_t and, past toe_strain, E_l, its hinges the fascia's bending:
-// the ball's force at the end (unit: N).
-Real implicit_press(Real linear_modulus, Real toe_strain) {
-  Press press;
-  press.depth = Real(0.0115);
+// the ball's force at the end (unit: N). press.proxy: the ball is a body solved with the
+// membrane, held to the device by the proxy's coupling (eq. 17's spring and damper).
+Real implicit_press(Real linear_modulus, Real toe_strain, Press press = {.depth = Real(0.0115)}) {
   Rig f;
   make_rig(press, f);
   const tissue::TissueWorld& w = f.world;
@@ -194,7 +193,12 @@ Real implicit_press(Real linear_modulus, Real toe_strain) {
   material.thickness = fascia.thickness;
   physics::ImplicitMembrane membrane(
       mass, fixed, physics::membrane_springs(mesh, material), w.model.solver.dt,
-      physics::membrane_hinges(mesh, fascia.effective_bending_stiffness()));
+      physics::membrane_hinges(mesh, fascia.effective_bending_stiffness()), press.proxy ? 1 : 0);
+  const surgery::ProxyParams coupling;
+  std::vector<physics::MembraneBody> bodies;
+  if (press.proxy) {
+    bodies.push_back({f.start, coupling.coupling_stiffness, coupling.coupling_damping, f.start});
+  }
   std::vector<Vec3> x = mesh.vertices, v(x.size(), Vec3::Zero());
   std::vector<physics::MembraneContact> contacts;
   const physics::ImplicitSolveParams solve;
@@ -202,7 +206,10 @@ Real implicit_press(Real linear_modulus, Real toe_strain) {
   const int travel = int(Real(0.015) / (Real(0.02) * dt));
   Vec3 force = Vec3::Zero();
   for (int k = 0; k < travel + 50; ++k) {
-    const Vec3 at = f.start + std::min(Real(1), Real(k) / Real(travel)) * (f.device - f.start);
+    const Vec3 device = f.start + std::min(Real(1), Real(k) / Real(travel)) * (f.device - f.start);
+    // The ball: where the device is, or the proxy body where it starts the step.
+    const Vec3 at = press.proxy ? bodies[0].position : device;
+    if (press.proxy) bodies[0].anchor = device;
     // Each vertex near the ball kept outside it and the tool contacts' margin, on the tangent
     // plane facing where it starts: the XPBD press's tool.
     const Real reach = kBallRadius + surgery::ContactParams{}.margin;
@@ -211,14 +218,22 @@ Real implicit_press(Real linear_modulus, Real toe_strain) {
       const Vec3 out = x[u] - at;
       if (fixed[u] || out.norm() > kBallRadius + Real(0.003) || !(out.norm() > 0)) continue;
       const Vec3 n = out.normalized();
-      contacts.push_back({u, at + reach * n, n});
+      contacts.push_back({u, at + reach * n, n, press.proxy ? 0 : physics::kNoMembraneBody});
     }
-    const physics::ImplicitStepReport r = membrane.step(x, v, {Vec3::Zero(), {}, contacts}, solve);
+    const physics::ImplicitStepReport r =
+        membrane.step(x, v, {Vec3::Zero(), {}, contacts, bodies}, solve);
     EXPECT_TRUE(r.ok);
     EXPECT_LT(r.residual, solve.tolerance) << "step " << k;
+    const Vec3 moved = press.proxy ? Vec3(bodies[0].position - at) : Vec3::Zero();
     force = Vec3::Zero();
     for (const physics::MembraneContact& c : contacts)
-      force -= physics::contact_force(c, x[c.vertex], solve.contact_stiffness) * c.normal;
+      force -= physics::contact_force(c, x[c.vertex], solve.contact_stiffness, moved) * c.normal;
+    if (press.proxy) {  // at rest the coupling carries what the contacts push
+      const Vec3 spring = coupling.coupling_stiffness * (device - bodies[0].position);
+      if (k + 1 == travel + 50) {
+        EXPECT_NEAR((spring + force).norm(), 0, 1e-3 * force.norm());
+      }
+    }
   }
   return force.norm();
 }
@@ -233,6 +248,20 @@ TEST(ImplicitPress, TheImplicitStepAndXpbdPressTheFasciaAlike) {
   converged.substeps = 128, converged.stretch_sweeps = 3;
   const Real xpbd = press_force(converged);
   const Real implicit = implicit_press(tissue::default_fascia_membrane().youngs_modulus, 1);
+  EXPECT_GT(xpbd, 0.2);
+  EXPECT_NEAR(implicit, xpbd, 0.02 * xpbd);
+}
+
+// The same through the tool proxy, 12 mm deep (the second press above): the proxy solved with
+// the membrane as one system against the XPBD proxy's converged 128 x 3.
+TEST(ImplicitPress, ThroughTheProxyTheImplicitStepAndXpbdPressAlike) {
+  Press p;
+  p.depth = Real(0.012);
+  p.proxy = true;
+  Press converged = p;
+  converged.substeps = 128, converged.stretch_sweeps = 3;
+  const Real xpbd = press_force(converged);
+  const Real implicit = implicit_press(tissue::default_fascia_membrane().youngs_modulus, 1, p);
   EXPECT_GT(xpbd, 0.2);
   EXPECT_NEAR(implicit, xpbd, 0.02 * xpbd);
 }

@@ -36,12 +36,13 @@ Vec3 hinge_curvature(const MembraneHinge& hinge, std::span<const Vec3> x) {
 
 ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
                                    std::vector<MembraneEdge> edges, Real h,
-                                   std::vector<MembraneHinge> hinges)
+                                   std::vector<MembraneHinge> hinges, std::uint32_t bodies)
     : mass_(std::move(mass)),
       fixed_(std::move(fixed)),
       edges_(std::move(edges)),
       h_(h),
-      hinges_(std::move(hinges)) {
+      hinges_(std::move(hinges)),
+      body_count_(bodies) {
   const std::size_t n = mass_.size();
   if (fixed_.size() != n)
     throw std::invalid_argument("implicit membrane: " + std::to_string(fixed_.size()) +
@@ -80,7 +81,8 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
 
   // The pattern: full 3 x 3 blocks on every free row's diagonal, between the free ends of every
   // edge and between every two free vertices of a hinge, cut or not, so that it never changes.
-  const auto rows = static_cast<Eigen::Index>(3 * free_vertices_.size());
+  const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
+  const auto rows = static_cast<Eigen::Index>(3 * (free_rows + body_count_));
   std::vector<Eigen::Triplet<Real>> entries;
   auto add_block = [&](std::uint32_t a, std::uint32_t b) {
     for (std::uint32_t r = 0; r < 3; ++r)
@@ -102,6 +104,13 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
         const std::uint32_t a = free_index_[hinge.v[p]], b = free_index_[hinge.v[q]];
         if (a != kFixed && b != kFixed) add_block(a, b);
       }
+  for (std::uint32_t b = 0; b < body_count_; ++b) {
+    add_block(free_rows + b, free_rows + b);
+    for (std::uint32_t a = 0; a < free_rows; ++a) {
+      add_block(free_rows + b, a);
+      add_block(a, free_rows + b);
+    }
+  }
   hessian_.resize(rows, rows);
   // Duplicates (an edge's block named by its hinges too) are summed, and the values are
   // overwritten at every factorisation.
@@ -131,6 +140,19 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
         hinge_blocks_[k][4 * p + q] =
             block(free_index_[hinges_[k].v[p]], free_index_[hinges_[k].v[q]]);
   hinge_removed_.assign(hinges_.size(), 0);
+  body_diagonal_.resize(body_count_);
+  body_vertex_.assign(body_count_, std::vector<Block>(free_rows));
+  vertex_body_.assign(body_count_, std::vector<Block>(free_rows));
+  for (std::uint32_t b = 0; b < body_count_; ++b) {
+    body_diagonal_[b] = block(free_rows + b, free_rows + b);
+    for (std::uint32_t a = 0; a < free_rows; ++a) {
+      body_vertex_[b][a] = block(free_rows + b, a);
+      vertex_body_[b][a] = block(a, free_rows + b);
+    }
+  }
+  for (auto* v : {&body_start_, &body_target_, &body_x_, &body_trial_})
+    v->assign(body_count_, Vec3::Zero());
+  body_weight_.assign(body_count_, Real(0));
   removed_.assign(edges_.size(), 0);
   x0_.resize(n);
   y_.resize(n);
@@ -140,8 +162,15 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint
   cholesky_.analyzePattern(hessian_);
 }
 
-Real ImplicitMembrane::potential(std::span<const Vec3> x, const ImplicitLoads& loads,
-                                 Real contact_k) const {
+Real ImplicitMembrane::gap(const MembraneContact& c, std::span<const Vec3> x,
+                           std::span<const Vec3> bx) const {
+  Vec3 point = c.point;
+  if (c.body != kNoMembraneBody) point += bx[c.body] - body_start_[c.body];
+  return c.normal.dot(x[c.vertex] - point);
+}
+
+Real ImplicitMembrane::potential(std::span<const Vec3> x, std::span<const Vec3> bx,
+                                 const ImplicitLoads& loads, Real contact_k) const {
   const std::span<const Vec3> force = loads.force;
   const Real inverse_h2 = 1 / (h_ * h_);
   Real phi = 0;  // (unit: J), relative to x = y for the inertial and the external terms
@@ -158,15 +187,17 @@ Real ImplicitMembrane::potential(std::span<const Vec3> x, const ImplicitLoads& l
     if (hinge_removed_[k]) continue;
     phi += Real(0.5) * hinges_[k].stiffness * hinge_curvature(hinges_[k], x).squaredNorm();
   }
+  for (std::uint32_t b = 0; b < body_count_; ++b)
+    phi += Real(0.5) * body_weight_[b] * (bx[b] - body_target_[b]).squaredNorm();
   for (const MembraneContact& c : loads.contacts) {
-    const Real gap = std::min(Real(0), c.normal.dot(x[c.vertex] - c.point));
-    phi += Real(0.5) * contact_k * gap * gap;
+    const Real g = std::min(Real(0), gap(c, x, bx));
+    phi += Real(0.5) * contact_k * g * g;
   }
   return phi;
 }
 
-void ImplicitMembrane::gradient(std::span<const Vec3> x, const ImplicitLoads& loads,
-                                Real contact_k) {
+void ImplicitMembrane::gradient(std::span<const Vec3> x, std::span<const Vec3> bx,
+                                const ImplicitLoads& loads, Real contact_k) {
   const std::span<const Vec3> force = loads.force;
   const Real inverse_h2 = 1 / (h_ * h_);
   for (std::uint32_t a = 0; a < free_vertices_.size(); ++a) {
@@ -195,15 +226,21 @@ void ImplicitMembrane::gradient(std::span<const Vec3> x, const ImplicitLoads& lo
       if (a != kFixed) gradient_.segment<3>(3 * a) += hinge.w[p] * kappa;
     }
   }
+  const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
+  for (std::uint32_t b = 0; b < body_count_; ++b)
+    gradient_.segment<3>(3 * (free_rows + b)) = body_weight_[b] * (bx[b] - body_target_[b]);
   for (const MembraneContact& c : loads.contacts) {
+    const Real g = gap(c, x, bx);
+    if (g >= 0) continue;
+    const Vec3 push = contact_k * g * c.normal;  // d/dx of k/2 g^2 (unit: N)
     const std::uint32_t a = free_index_[c.vertex];
-    if (a != kFixed)
-      gradient_.segment<3>(3 * a) -= contact_force(c, x[c.vertex], contact_k) * c.normal;
+    if (a != kFixed) gradient_.segment<3>(3 * a) += push;
+    if (c.body != kNoMembraneBody) gradient_.segment<3>(3 * (free_rows + c.body)) -= push;
   }
 }
 
-bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, const ImplicitLoads& loads,
-                                      Real contact_k) {
+bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx,
+                                      const ImplicitLoads& loads, Real contact_k) {
   Real* value = hessian_.valuePtr();
   std::fill(value, value + hessian_.nonZeros(), Real(0));
   auto add = [&](const Block& block, const Mat3& k, Real sign) {
@@ -231,10 +268,18 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, const ImplicitLoa
         add(hinge_blocks_[k][4 * p + q],
             hinge.stiffness * hinge.w[p] * hinge.w[q] * Mat3::Identity(), 1);
   }
+  for (std::uint32_t b = 0; b < body_count_; ++b)
+    add(body_diagonal_[b], body_weight_[b] * Mat3::Identity(), 1);
   for (const MembraneContact& c : loads.contacts) {
+    if (gap(c, x, bx) >= 0) continue;
+    const Mat3 k = contact_k * c.normal * c.normal.transpose();
     const std::uint32_t a = free_index_[c.vertex];
-    if (a != kFixed && c.normal.dot(x[c.vertex] - c.point) < 0)
-      add(diagonal_[a], contact_k * c.normal * c.normal.transpose(), 1);
+    if (a != kFixed) add(diagonal_[a], k, 1);
+    if (c.body == kNoMembraneBody) continue;
+    add(body_diagonal_[c.body], k, 1);
+    if (a == kFixed) continue;
+    add(body_vertex_[c.body][a], k, -1);
+    add(vertex_body_[c.body][a], k, -1);
   }
   cholesky_.factorize(hessian_);
   return cholesky_.info() == Eigen::Success;
@@ -246,6 +291,27 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
   const Vec3& gravity = loads.gravity;
   const Real contact_k = params.contact_stiffness;
   ImplicitStepReport report;
+  if (loads.bodies.size() != body_count_)
+    throw std::invalid_argument("implicit membrane: " + std::to_string(loads.bodies.size()) +
+                                " bodies given to a solver made for " +
+                                std::to_string(body_count_));
+  for (std::size_t k = 0; k < loads.contacts.size(); ++k) {
+    const MembraneContact& c = loads.contacts[k];
+    if (c.vertex >= mass_.size() || (c.body != kNoMembraneBody && c.body >= body_count_))
+      throw std::invalid_argument("implicit membrane: contact " + std::to_string(k) +
+                                  " names a vertex or a body out of range");
+  }
+  for (std::uint32_t b = 0; b < body_count_; ++b) {
+    const MembraneBody& body = loads.bodies[b];
+    if (!(body.stiffness >= 0) || !(body.damping >= 0) || !(body.stiffness + body.damping > 0))
+      throw std::invalid_argument("implicit membrane: body " + std::to_string(b) +
+                                  ": stiffness and damping must not be negative, nor both zero");
+    // k/2 |o - anchor|^2 + c/(2h) |o - o_start|^2 = w/2 |o - target|^2 + constant.
+    const Real viscous = body.damping / h_;
+    body_weight_[b] = viscous + body.stiffness;
+    body_target_[b] = (viscous * body.position + body.stiffness * body.anchor) / body_weight_[b];
+    body_start_[b] = body_x_[b] = body_trial_[b] = body.position;
+  }
   for (std::uint32_t u : free_vertices_) {
     x0_[u] = x[u];
     y_[u] = x[u] + h_ * v[u] + h_ * h_ * gravity;  // the inertial prediction
@@ -256,11 +322,11 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
   }
   auto largest_imbalance = [&] {
     Real largest = 0;
-    for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
-      largest = std::max(largest, gradient_.segment<3>(3 * a).norm());
+    for (Eigen::Index r = 0; r < gradient_.size(); r += 3)
+      largest = std::max(largest, gradient_.segment<3>(r).norm());
     return largest;
   };
-  gradient(x, loads, contact_k);
+  gradient(x, body_x_, loads, contact_k);
   report.residual = largest_imbalance();
   std::copy(x.begin(), x.end(), trial_.begin());
   // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
@@ -268,7 +334,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
   bool refactor = !factored_;
   while (report.iterations < params.max_iterations && report.residual > params.tolerance) {
     if (refactor) {
-      if (!factor_hessian(x, loads, contact_k)) {
+      if (!factor_hessian(x, body_x_, loads, contact_k)) {
         report.ok = false;
         factored_ = false;
         break;
@@ -280,16 +346,20 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     direction_ = cholesky_.solve(-gradient_);
     // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
     // (whatever iterate it was made at), so the direction descends.
-    const Real phi = potential(x, loads, contact_k);
+    const Real phi = potential(x, body_x_, loads, contact_k);
     Real slope = 0;  // a plain loop: GCC 12 warns falsely in Eigen's AVX-512 dot product
     for (Eigen::Index k = 0; k < gradient_.size(); ++k)
       slope += gradient_[k] * direction_[k];
     Real alpha = 1;
     bool accepted = false;
     for (int halving = 0; halving < 30 && !accepted; ++halving, alpha *= Real(0.5)) {
-      for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+      const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
+      for (std::uint32_t a = 0; a < free_rows; ++a)
         trial_[free_vertices_[a]] = x[free_vertices_[a]] + alpha * direction_.segment<3>(3 * a);
-      accepted = potential(trial_, loads, contact_k) <= phi + Real(1e-4) * alpha * slope;
+      for (std::uint32_t b = 0; b < body_count_; ++b)
+        body_trial_[b] = body_x_[b] + alpha * direction_.segment<3>(3 * (free_rows + b));
+      accepted =
+          potential(trial_, body_trial_, loads, contact_k) <= phi + Real(1e-4) * alpha * slope;
     }
     if (!accepted) {
       if (refactor) break;  // a fresh Newton step finds no descent: solved to Phi's rounding
@@ -298,14 +368,17 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     }
     for (std::uint32_t u : free_vertices_)
       x[u] = trial_[u];
+    body_x_ = body_trial_;
     const Real before = report.residual;
-    gradient(x, loads, contact_k);
+    gradient(x, body_x_, loads, contact_k);
     report.residual = largest_imbalance();
     // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate.
     refactor = report.residual > params.kept_matrix_ratio * before;
   }
   for (std::uint32_t u : free_vertices_)
     v[u] = (x[u] - x0_[u]) / h_;
+  for (std::uint32_t b = 0; b < body_count_; ++b)
+    loads.bodies[b].position = body_x_[b];
   return report;
 }
 

@@ -49,18 +49,35 @@ struct MembraneHinge {
   Real stiffness = 0;       // k = D |e|^2 / (A_1 + A_2) (unit: N m)
 };
 
+inline constexpr std::uint32_t kNoMembraneBody = 0xffffffffu;
+
+// A rigid body solved with the membrane: a tool's proxy, held to its device by a spring and a
+// damper (eq. 17's coupling) and pushed by the membrane through the contacts that name it. Its
+// energy over the step, k/2 |o - anchor|^2 + c / (2 h) |o - o_start|^2, is backward Euler's for a
+// massless body on that spring and damper.
+struct MembraneBody {
+  Vec3 anchor = Vec3::Zero();    // where the spring pulls it: the device (unit: m)
+  Real stiffness = 0;            // k (unit: N/m)
+  Real damping = 0;              // c (unit: N s/m); k or c positive
+  Vec3 position = Vec3::Zero();  // o: its place at the step's start, and at its end (unit: m)
+};
+
 // A vertex kept on the positive side of a plane (a rigid surface or a tool, linearised for the
 // step: the caller places the plane where the surface will be at the step's end) by a stiff
-// one-sided spring, energy k/2 min(0, n . (x - p))^2: a penalty the Newton solve sees whole.
+// one-sided spring, energy k/2 min(0, gap)^2, gap = n . (x - p): a penalty the Newton solve sees
+// whole. A plane on a body moves with it: gap = n . (x - p - (o - o_start)).
 struct MembraneContact {
   std::uint32_t vertex = 0;
   Vec3 point = Vec3::Zero();    // on the plane (unit: m)
   Vec3 normal = Vec3::UnitY();  // unit, out of the surface
+  std::uint32_t body = kNoMembraneBody;
 };
 
-// The normal force the contact's surface exerts on its vertex at x (unit: N).
-inline Real contact_force(const MembraneContact& c, const Vec3& x, Real stiffness) {
-  const Real gap = c.normal.dot(x - c.point);
+// The normal force the contact's surface exerts on its vertex at x (unit: N); moved: how far the
+// contact's body moved in the step (o - o_start), zero for a fixed surface.
+inline Real contact_force(const MembraneContact& c, const Vec3& x, Real stiffness,
+                          const Vec3& moved = Vec3::Zero()) {
+  const Real gap = c.normal.dot(x - c.point - moved);
   return gap < 0 ? -stiffness * gap : Real(0);
 }
 
@@ -69,6 +86,7 @@ struct ImplicitLoads {
   Vec3 gravity = Vec3::Zero();                // (unit: m/s^2)
   std::span<const Vec3> force;                // per vertex (unit: N), or empty
   std::span<const MembraneContact> contacts;  // any number, a vertex in several
+  std::span<MembraneBody> bodies;             // as many as the solver was made for
 };
 
 struct ImplicitSolveParams {
@@ -98,11 +116,15 @@ class ImplicitMembrane {
   // mass (unit: kg) and fixed (1: moved by the caller) per vertex; h the step (unit: s).
   // Throws std::invalid_argument naming what is wrong (sizes, a free vertex without mass, an
   // edge out of range, a stiffness or h not positive, a linear stiffness below the toe's).
+  // bodies: how many MembraneBody the loads of every step bring (each solved with the membrane).
   ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
-                   std::vector<MembraneEdge> edges, Real h, std::vector<MembraneHinge> hinges = {});
+                   std::vector<MembraneEdge> edges, Real h, std::vector<MembraneHinge> hinges = {},
+                   std::uint32_t bodies = 0);
 
   // One step of length h. x, v: every vertex (unit: m, m/s); the fixed ones' x are their
-  // positions at the step's end and are left as they are, as are their v.
+  // positions at the step's end and are left as they are, as are their v. Throws
+  // std::invalid_argument for loads it was not made for (the bodies' count, a contact naming a
+  // vertex or body out of range, a body with neither stiffness nor damping).
   ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
                           const ImplicitSolveParams& params);
 
@@ -125,9 +147,15 @@ class ImplicitMembrane {
   };
 
   // Phi at x, and its gradient over the free rows into gradient_.
-  Real potential(std::span<const Vec3> x, const ImplicitLoads& loads, Real contact_k) const;
-  void gradient(std::span<const Vec3> x, const ImplicitLoads& loads, Real contact_k);
-  bool factor_hessian(std::span<const Vec3> x, const ImplicitLoads& loads, Real contact_k);
+  // bx: the bodies' positions.
+  Real potential(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
+                 Real contact_k) const;
+  void gradient(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
+                Real contact_k);
+  bool factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
+                      Real contact_k);
+  // A contact's gap at x (with its body at bx), and its body's row or kFixed.
+  Real gap(const MembraneContact& c, std::span<const Vec3> x, std::span<const Vec3> bx) const;
 
   std::vector<Real> mass_;
   std::vector<std::uint8_t> fixed_;
@@ -139,6 +167,13 @@ class ImplicitMembrane {
   std::vector<Block> diagonal_;               // per block row
   std::vector<EdgeBlocks> blocks_;
   std::vector<MembraneHinge> hinges_;
+  std::uint32_t body_count_ = 0;
+  // Per body: its diagonal block, and its blocks with every free vertex (body row, vertex row)
+  // and (vertex row, body row): a contact may join it to any.
+  std::vector<Block> body_diagonal_;
+  std::vector<std::vector<Block>> body_vertex_, vertex_body_;
+  std::vector<Vec3> body_start_, body_target_, body_x_, body_trial_;
+  std::vector<Real> body_weight_;  // (c / h + k) of each body (unit: N/m)
   std::vector<std::uint8_t> hinge_removed_;
   std::vector<std::array<Block, 16>> hinge_blocks_;  // (a, b) at 4 a + b
   Sparse hessian_;
