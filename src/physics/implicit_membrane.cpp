@@ -34,23 +34,22 @@ Vec3 hinge_curvature(const MembraneHinge& hinge, std::span<const Vec3> x) {
 
 }  // namespace
 
-ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
+ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std::uint8_t>& fixed,
                                    std::vector<MembraneEdge> edges, Real h,
                                    std::vector<MembraneHinge> hinges, std::uint32_t bodies)
     : mass_(std::move(mass)),
-      fixed_(std::move(fixed)),
       edges_(std::move(edges)),
       h_(h),
       hinges_(std::move(hinges)),
       body_count_(bodies) {
   const std::size_t n = mass_.size();
-  if (fixed_.size() != n)
-    throw std::invalid_argument("implicit membrane: " + std::to_string(fixed_.size()) +
+  if (fixed.size() != n)
+    throw std::invalid_argument("implicit membrane: " + std::to_string(fixed.size()) +
                                 " fixed flags for " + std::to_string(n) + " vertices");
   if (!(h_ > 0)) throw std::invalid_argument("implicit membrane: step h must be positive");
   free_index_.assign(n, kFixed);
   for (std::size_t v = 0; v < n; ++v) {
-    if (fixed_[v]) continue;
+    if (fixed[v]) continue;
     if (!(mass_[v] > 0))
       throw std::invalid_argument("implicit membrane: free vertex " + std::to_string(v) +
                                   " has no mass");
@@ -291,6 +290,12 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
   const Vec3& gravity = loads.gravity;
   const Real contact_k = params.contact_stiffness;
   ImplicitStepReport report;
+  const std::size_t n = mass_.size();
+  if (x.size() != n || v.size() != n || !(loads.force.empty() || loads.force.size() == n))
+    throw std::invalid_argument(
+        "implicit membrane: positions, velocities and forces must be one "
+        "per vertex (" +
+        std::to_string(n) + ")");
   if (loads.bodies.size() != body_count_)
     throw std::invalid_argument("implicit membrane: " + std::to_string(loads.bodies.size()) +
                                 " bodies given to a solver made for " +
@@ -343,7 +348,8 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       ++report.factorizations;
     }
     ++report.iterations;
-    direction_ = cholesky_.solve(-gradient_);
+    direction_ = cholesky_.solve(gradient_);  // into the kept vector; the step is its negative
+    direction_ = -direction_;
     // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
     // (whatever iterate it was made at), so the direction descends.
     const Real phi = potential(x, body_x_, loads, contact_k);

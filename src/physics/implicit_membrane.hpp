@@ -117,14 +117,16 @@ class ImplicitMembrane {
   // Throws std::invalid_argument naming what is wrong (sizes, a free vertex without mass, an
   // edge out of range, a stiffness or h not positive, a linear stiffness below the toe's).
   // bodies: how many MembraneBody the loads of every step bring (each solved with the membrane).
-  ImplicitMembrane(std::vector<Real> mass, std::vector<std::uint8_t> fixed,
+  ImplicitMembrane(std::vector<Real> mass, const std::vector<std::uint8_t>& fixed,
                    std::vector<MembraneEdge> edges, Real h, std::vector<MembraneHinge> hinges = {},
                    std::uint32_t bodies = 0);
 
   // One step of length h. x, v: every vertex (unit: m, m/s); the fixed ones' x are their
   // positions at the step's end and are left as they are, as are their v. Throws
-  // std::invalid_argument for loads it was not made for (the bodies' count, a contact naming a
-  // vertex or body out of range, a body with neither stiffness nor damping).
+  // std::invalid_argument for what it was not made for (x, v or a force not one per vertex,
+  // the bodies' count, a contact naming a vertex or body out of range, a body with neither
+  // stiffness nor damping). The report's residual says how far the step was solved: above the
+  // tolerance when max_iterations ran out.
   ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
                           const ImplicitSolveParams& params);
 
@@ -132,9 +134,7 @@ class ImplicitMembrane {
   void remove_edge(std::size_t e);
   void remove_hinge(std::size_t k);
 
-  std::size_t vertex_count() const { return mass_.size(); }
   std::size_t free_count() const { return free_vertices_.size(); }
-  const std::vector<MembraneEdge>& edges() const { return edges_; }
 
  private:
   static constexpr std::uint32_t kFixed = 0xffffffffu;
@@ -158,7 +158,6 @@ class ImplicitMembrane {
   Real gap(const MembraneContact& c, std::span<const Vec3> x, std::span<const Vec3> bx) const;
 
   std::vector<Real> mass_;
-  std::vector<std::uint8_t> fixed_;
   std::vector<MembraneEdge> edges_;
   std::vector<std::uint8_t> removed_;
   Real h_ = 0;

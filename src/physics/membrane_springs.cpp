@@ -1,12 +1,18 @@
 #include "physics/membrane_springs.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "geometry/edge_adjacency.hpp"
 
 namespace imasim::physics {
 
 namespace {
+
+std::string edge_name(const geometry::MeshEdge& e) {
+  return "membrane edge " + std::to_string(e.a) + "-" + std::to_string(e.b);
+}
 
 Real triangle_area(const geometry::TriangleMesh& mesh, std::uint32_t f) {
   const auto& t = mesh.triangles[f];
@@ -26,6 +32,7 @@ std::vector<MembraneEdge> membrane_springs(const geometry::TriangleMesh& mesh,
     for (std::uint32_t f : e.faces)
       if (f != geometry::kNoFace) area += triangle_area(mesh, f);
     const Real length2 = (mesh.vertices[e.a] - mesh.vertices[e.b]).squaredNorm();
+    if (!(length2 > 0)) throw std::invalid_argument(edge_name(e) + " has no length");
     // k_e = E t sum_T A_T / |e|^2 (unit: N/m)
     const Real per_modulus = material.thickness * area / length2;
     MembraneEdge spring;
@@ -51,6 +58,7 @@ std::vector<MembraneHinge> membrane_hinges(const geometry::TriangleMesh& mesh,
     const Vec3& a = mesh.vertices[e.a];
     const Vec3 edge = mesh.vertices[e.b] - a;
     const Real length = edge.norm();
+    if (!(length > 0)) throw std::invalid_argument(edge_name(e) + " has no length");
     const Vec3 t = edge / length;
     // Each wing's place along the edge (s) and its height over it (h): w = 1/h for the wings,
     // and the edge's ends take what makes the sum and the first moment vanish at rest.
@@ -58,11 +66,19 @@ std::vector<MembraneHinge> membrane_hinges(const geometry::TriangleMesh& mesh,
     for (int k = 0; k < 2; ++k) {
       const Vec3 r = mesh.vertices[e.opposite[k]] - a;
       const Real s = r.dot(t), h = (r - s * t).norm();
+      if (!(h > 0)) throw std::invalid_argument(edge_name(e) + ": a wing lies on the edge");
       hinge.w[2 + k] = 1 / h;
       along += s / h;
     }
     hinge.w[1] = -along / length;
     hinge.w[0] = -hinge.w[1] - hinge.w[2] - hinge.w[3];
+    // |sum w x| at rest is 2 sin(theta / 2) of the rest dihedral angle theta.
+    Vec3 rest = Vec3::Zero();
+    for (int p = 0; p < 4; ++p)
+      rest += hinge.w[p] * mesh.vertices[hinge.v[p]];
+    if (rest.norm() > Real(1e-6))
+      throw std::invalid_argument(edge_name(e) + " is not flat at rest (dihedral angle " +
+                                  std::to_string(rest.norm()) + " rad)");
     const Real area = triangle_area(mesh, e.faces[0]) + triangle_area(mesh, e.faces[1]);
     hinge.stiffness = bending_stiffness * length * length / area;  // (unit: N m)
     hinges.push_back(hinge);

@@ -18,13 +18,16 @@ struct StiffeningMembrane {
   Real density = 0;         // rho, for the lumped masses (unit: kg/m^3)
 };
 
-// One spring per unique edge, in build_edge_adjacency's order.
+// One spring per unique edge, in build_edge_adjacency's order. Throws std::invalid_argument
+// naming an edge of zero length.
 std::vector<MembraneEdge> membrane_springs(const geometry::TriangleMesh& mesh,
                                            const StiffeningMembrane& material);
 
 // One hinge per interior edge, in build_edge_adjacency's order, for a mesh flat at rest: the
 // weights of MembraneHinge from the rest geometry, k = D |e|^2 / (A_1 + A_2) as the XPBD
-// dihedral rows (membrane_material.hpp). D: the bending stiffness (unit: N m).
+// dihedral rows (membrane_material.hpp). D: the bending stiffness (unit: N m). Throws
+// std::invalid_argument naming an edge whose wing lies on it or whose hinge is not flat at rest
+// (its rest dihedral angle above 1e-6 rad): this bending would push such a hinge flat.
 std::vector<MembraneHinge> membrane_hinges(const geometry::TriangleMesh& mesh,
                                            Real bending_stiffness);
 
