@@ -239,6 +239,28 @@ TEST(ImplicitMembrane, AHingeHeldAtItsEdgeCarriesAWingsWeightByBending) {
   EXPECT_NEAR(k * std::sin(theta), m * 9.81 * h3 * std::cos(theta), 1e-3 * m * 9.81 * h3);
 }
 
+TEST(ImplicitMembrane, AWingWhoseHingeIsCutFallsFreelyInOneNewtonIterationAStep) {
+  // The wing held by its hinge alone; once the hinge is cut, its step is the quadratic of its mass
+  // and gravity, which one Newton iteration solves exactly if the matrix lost the hinge too.
+  const geometry::TriangleMesh mesh = flat_hinge();
+  const double m = 1e-4, h = 0.005;
+  ImplicitMembrane hinge({1, 1, 1, m}, {1, 1, 1, 0}, {}, h, membrane_hinges(mesh, 2e-5));
+  std::vector<Vec3> x = mesh.vertices, v(4, Vec3::Zero());
+  for (int step = 0; step < 20; ++step)
+    ASSERT_TRUE(hinge.step(x, v, {kGravity, {}, {}, {}}, {}).ok);
+  hinge.remove_hinge(0);
+  const Vec3 start = x[3], speed = v[3];
+  constexpr int steps = 10;
+  for (int step = 0; step < steps; ++step) {
+    const ImplicitStepReport report = hinge.step(x, v, {kGravity, {}, {}, {}}, {});
+    ASSERT_TRUE(report.ok);
+    EXPECT_EQ(report.iterations, 1u) << "step " << step;
+  }
+  // Backward Euler under gravity alone: x_n = x_0 + n h v_0 + h^2 g n (n + 1) / 2.
+  const Vec3 expected = start + steps * h * speed + h * h * kGravity * steps * (steps + 1) / 2.0;
+  EXPECT_NEAR((x[3] - expected).norm(), 0, 1e-12);
+}
+
 TEST(ImplicitMembrane, ABodyOnItsSpringPressesAVertexAsSpringsInSeries) {
   // A vertex hung 10 mm under a fixed one on a spring (no gravity); under it a body held by its
   // coupling to an anchor 2 mm above the vertex's rest, pushing it up through a contact plane

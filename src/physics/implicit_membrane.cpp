@@ -78,51 +78,35 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
                                   ": stiffness must not be negative");
   }
 
-  // The pattern: full 3 x 3 blocks on every free row's diagonal, between the free ends of every
-  // edge and between every two free vertices of a hinge, cut or not, so that it never changes.
+  // The pattern: a block on every free row's diagonal, between the free ends of every edge and
+  // between every two free vertices of a hinge, cut or not, so that it never changes; a body's
+  // row joins every free vertex.
   const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
-  const auto rows = static_cast<Eigen::Index>(3 * (free_rows + body_count_));
-  std::vector<Eigen::Triplet<Real>> entries;
-  auto add_block = [&](std::uint32_t a, std::uint32_t b) {
-    for (std::uint32_t r = 0; r < 3; ++r)
-      for (std::uint32_t c = 0; c < 3; ++c)
-        entries.emplace_back(3 * a + r, 3 * b + c, Real(1));
+  block_rows_ = free_rows + body_count_;
+  std::vector<BlockCholesky::Pair> pairs;
+  auto join = [&](std::uint32_t a, std::uint32_t b) {
+    if (a != kFixed && b != kFixed && a != b) pairs.emplace_back(std::min(a, b), std::max(a, b));
   };
-  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
-    add_block(a, a);
-  for (const MembraneEdge& edge : edges_) {
-    const std::uint32_t a = free_index_[edge.i], b = free_index_[edge.j];
-    if (a != kFixed && b != kFixed) {
-      add_block(a, b);
-      add_block(b, a);
-    }
-  }
+  for (const MembraneEdge& edge : edges_)
+    join(free_index_[edge.i], free_index_[edge.j]);
   for (const MembraneHinge& hinge : hinges_)
     for (std::uint32_t p = 0; p < 4; ++p)
-      for (std::uint32_t q = 0; q < 4; ++q) {
-        const std::uint32_t a = free_index_[hinge.v[p]], b = free_index_[hinge.v[q]];
-        if (a != kFixed && b != kFixed) add_block(a, b);
-      }
-  for (std::uint32_t b = 0; b < body_count_; ++b) {
-    add_block(free_rows + b, free_rows + b);
-    for (std::uint32_t a = 0; a < free_rows; ++a) {
-      add_block(free_rows + b, a);
-      add_block(a, free_rows + b);
-    }
-  }
-  hessian_.resize(rows, rows);
-  // Duplicates (an edge's block named by its hinges too) are summed, and the values are
-  // overwritten at every factorisation.
-  hessian_.setFromTriplets(entries.begin(), entries.end());
-  hessian_.makeCompressed();
-  auto block = [&](std::uint32_t a, std::uint32_t b) {
-    Block out;
-    out.fill(-1);
-    if (a == kFixed || b == kFixed) return out;
-    for (std::uint32_t c = 0; c < 3; ++c)
-      for (std::uint32_t r = 0; r < 3; ++r)
-        out[3 * c + r] = &hessian_.coeffRef(3 * a + r, 3 * b + c) - hessian_.valuePtr();
-    return out;
+      for (std::uint32_t q = p + 1; q < 4; ++q)
+        join(free_index_[hinge.v[p]], free_index_[hinge.v[q]]);
+  for (std::uint32_t b = 0; b < body_count_; ++b)
+    for (std::uint32_t a = 0; a < free_rows; ++a)
+      join(a, free_rows + b);
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  cholesky_.analyse(block_rows_, pairs);
+  hessian_.assign(block_rows_ + pairs.size(), Mat3::Zero());
+  constant_hessian_.assign(hessian_.size(), Mat3::Zero());
+  auto block = [&](std::uint32_t a, std::uint32_t b) -> Block {
+    if (a == kFixed || b == kFixed) return kFixed;
+    if (a == b) return a;
+    const BlockCholesky::Pair key(std::min(a, b), std::max(a, b));
+    return block_rows_ +
+           static_cast<Block>(std::lower_bound(pairs.begin(), pairs.end(), key) - pairs.begin());
   };
   diagonal_.resize(free_vertices_.size());
   for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
@@ -130,24 +114,22 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
   blocks_.resize(edges_.size());
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     const std::uint32_t a = free_index_[edges_[e].i], b = free_index_[edges_[e].j];
-    blocks_[e] = {block(a, a), block(b, b), block(a, b), block(b, a)};
+    blocks_[e] = {block(a, a), block(b, b), block(a, b)};
   }
+  // A hinge's pair (p, q) and (q, p) are one block: only p <= q is kept.
   hinge_blocks_.resize(hinges_.size());
   for (std::size_t k = 0; k < hinges_.size(); ++k)
     for (std::uint32_t p = 0; p < 4; ++p)
       for (std::uint32_t q = 0; q < 4; ++q)
         hinge_blocks_[k][4 * p + q] =
-            block(free_index_[hinges_[k].v[p]], free_index_[hinges_[k].v[q]]);
+            q < p ? kFixed : block(free_index_[hinges_[k].v[p]], free_index_[hinges_[k].v[q]]);
   hinge_removed_.assign(hinges_.size(), 0);
   body_diagonal_.resize(body_count_);
   body_vertex_.assign(body_count_, std::vector<Block>(free_rows));
-  vertex_body_.assign(body_count_, std::vector<Block>(free_rows));
   for (std::uint32_t b = 0; b < body_count_; ++b) {
     body_diagonal_[b] = block(free_rows + b, free_rows + b);
-    for (std::uint32_t a = 0; a < free_rows; ++a) {
+    for (std::uint32_t a = 0; a < free_rows; ++a)
       body_vertex_[b][a] = block(free_rows + b, a);
-      vertex_body_[b][a] = block(a, free_rows + b);
-    }
   }
   for (auto* v : {&body_start_, &body_target_, &body_x_, &body_trial_})
     v->assign(body_count_, Vec3::Zero());
@@ -156,9 +138,8 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
   x0_.resize(n);
   y_.resize(n);
   trial_.resize(n);
-  gradient_.resize(rows);
-  direction_.resize(rows);
-  cholesky_.analyzePattern(hessian_);
+  gradient_.resize(3 * block_rows_);
+  direction_.resize(3 * block_rows_);
 }
 
 Real ImplicitMembrane::gap(const MembraneContact& c, std::span<const Vec3> x,
@@ -240,32 +221,32 @@ void ImplicitMembrane::gradient(std::span<const Vec3> x, std::span<const Vec3> b
 
 bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx,
                                       const ImplicitLoads& loads, Real contact_k) {
-  Real* value = hessian_.valuePtr();
-  std::fill(value, value + hessian_.nonZeros(), Real(0));
-  auto add = [&](const Block& block, const Mat3& k, Real sign) {
-    if (block[0] < 0) return;
-    for (int c = 0; c < 3; ++c)
-      for (int r = 0; r < 3; ++r)
-        value[block[3 * c + r]] += sign * k(r, c);
+  auto add = [&](Block block, const Mat3& k, Real sign) {
+    if (block != kFixed) hessian_[block] += sign * k;
   };
-  const Real inverse_h2 = 1 / (h_ * h_);
-  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
-    add(diagonal_[a], mass_[free_vertices_[a]] * inverse_h2 * Mat3::Identity(), 1);
+  if (constant_stale_) {  // the part no iterate changes: the masses and the hinges
+    std::fill(hessian_.begin(), hessian_.end(), Mat3::Zero());
+    const Real inverse_h2 = 1 / (h_ * h_);
+    for (std::uint32_t a = 0; a < free_vertices_.size(); ++a)
+      add(diagonal_[a], mass_[free_vertices_[a]] * inverse_h2 * Mat3::Identity(), 1);
+    for (std::size_t k = 0; k < hinges_.size(); ++k) {
+      if (hinge_removed_[k]) continue;
+      const MembraneHinge& hinge = hinges_[k];
+      for (std::uint32_t p = 0; p < 4; ++p)
+        for (std::uint32_t q = 0; q < 4; ++q)
+          add(hinge_blocks_[k][4 * p + q],
+              hinge.stiffness * hinge.w[p] * hinge.w[q] * Mat3::Identity(), 1);
+    }
+    constant_hessian_ = hessian_;
+    constant_stale_ = false;
+  }
+  std::copy(constant_hessian_.begin(), constant_hessian_.end(), hessian_.begin());
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     if (removed_[e]) continue;
     const Mat3 k = edge_stiffness(edges_[e].spring, x[edges_[e].i] - x[edges_[e].j]);
     add(blocks_[e].ii, k, 1);
     add(blocks_[e].jj, k, 1);
     add(blocks_[e].ij, k, -1);
-    add(blocks_[e].ji, k, -1);
-  }
-  for (std::size_t k = 0; k < hinges_.size(); ++k) {
-    if (hinge_removed_[k]) continue;
-    const MembraneHinge& hinge = hinges_[k];
-    for (std::uint32_t p = 0; p < 4; ++p)
-      for (std::uint32_t q = 0; q < 4; ++q)
-        add(hinge_blocks_[k][4 * p + q],
-            hinge.stiffness * hinge.w[p] * hinge.w[q] * Mat3::Identity(), 1);
   }
   for (std::uint32_t b = 0; b < body_count_; ++b)
     add(body_diagonal_[b], body_weight_[b] * Mat3::Identity(), 1);
@@ -278,10 +259,9 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
     add(body_diagonal_[c.body], k, 1);
     if (a == kFixed) continue;
     add(body_vertex_[c.body][a], k, -1);
-    add(vertex_body_[c.body][a], k, -1);
   }
-  cholesky_.factorize(hessian_);
-  return cholesky_.info() == Eigen::Success;
+  return cholesky_.factorize({hessian_.data(), block_rows_},
+                             {hessian_.data() + block_rows_, hessian_.size() - block_rows_});
 }
 
 ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
@@ -348,8 +328,8 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       ++report.factorizations;
     }
     ++report.iterations;
-    direction_ = cholesky_.solve(gradient_);  // into the kept vector; the step is its negative
-    direction_ = -direction_;
+    direction_ = -gradient_;  // the step solves H d = -grad
+    cholesky_.solve({direction_.data(), static_cast<std::size_t>(direction_.size())});
     // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
     // (whatever iterate it was made at), so the direction descends.
     const Real phi = potential(x, body_x_, loads, contact_k);
@@ -392,6 +372,7 @@ void ImplicitMembrane::remove_hinge(std::size_t k) {
   if (k >= hinges_.size()) return;
   hinge_removed_[k] = 1;
   factored_ = false;
+  constant_stale_ = true;
 }
 
 void ImplicitMembrane::remove_edge(std::size_t e) {

@@ -6,11 +6,11 @@
 // y = x0 + h v0 + h^2 g, E_k the hinges' bending (MembraneHinge), E_c the contacts' penalties
 // (MembraneContact),
 // by Newton's method: the Hessian (M / h^2 plus, per edge, the regime's stiffness along the edge
-// and the tension's T / l across it) is factored by sparse Cholesky (the pattern analysed once at
-// set-up), and each iteration backtracks along its step until Phi falls. The factorisation, the
-// costly part, is kept across iterations and steps while it converges fast (modified Newton).
-// Stiffness costs no substeps and no sweeps: a stiff edge is stiff in the matrix, which the
-// factorisation inverts exactly.
+// and the tension's T / l across it) is factored by sparse Cholesky of 3 x 3 blocks
+// (block_cholesky.hpp; the pattern analysed once at set-up), and each iteration backtracks along
+// its step until Phi falls. The factorisation, the costly part, is kept across iterations and steps
+// while it converges fast (modified Newton). Stiffness costs no substeps and no sweeps: a stiff
+// edge is stiff in the matrix, which the factorisation inverts exactly.
 //
 // Why not projective dynamics (a constant matrix factored once): its matrix gives every edge its
 // axial stiffness in all three directions. A taut membrane pushed across its plane resists with
@@ -21,14 +21,13 @@
 // Across an edge in compression the Hessian takes no (negative) tension term, so the matrix stays
 // positive definite; the line search keeps the step a descent on the true potential. A cut zeroes
 // an edge and keeps the pattern. Fixed vertices are moved by the caller and enter as known.
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "math/types.hpp"
+#include "physics/block_cholesky.hpp"
 #include "physics/stiffening_spring.hpp"
 
 namespace imasim::physics {
@@ -138,12 +137,13 @@ class ImplicitMembrane {
 
  private:
   static constexpr std::uint32_t kFixed = 0xffffffffu;
-  using Sparse = Eigen::SparseMatrix<Real>;
   using Dense = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
-  // The value indices of a 3 x 3 block, column by column; -1 where an end is fixed.
-  using Block = std::array<std::ptrdiff_t, 9>;
+  // A 3 x 3 block of the Hessian: its index in hessian_ (the diagonal blocks first, then one per
+  // pair of block rows, a block and its transpose being one), or kFixed where an end is fixed.
+  // Every block added is symmetric, so a pair's orientation does not matter.
+  using Block = std::uint32_t;
   struct EdgeBlocks {
-    Block ii{}, jj{}, ij{}, ji{};
+    Block ii = kFixed, jj = kFixed, ij = kFixed;
   };
 
   // Phi at x, and its gradient over the free rows into gradient_.
@@ -167,16 +167,20 @@ class ImplicitMembrane {
   std::vector<EdgeBlocks> blocks_;
   std::vector<MembraneHinge> hinges_;
   std::uint32_t body_count_ = 0;
-  // Per body: its diagonal block, and its blocks with every free vertex (body row, vertex row)
-  // and (vertex row, body row): a contact may join it to any.
+  // Per body: its diagonal block, and its block with every free vertex: a contact may join it to
+  // any.
   std::vector<Block> body_diagonal_;
-  std::vector<std::vector<Block>> body_vertex_, vertex_body_;
+  std::vector<std::vector<Block>> body_vertex_;
   std::vector<Vec3> body_start_, body_target_, body_x_, body_trial_;
   std::vector<Real> body_weight_;  // (c / h + k) of each body (unit: N/m)
   std::vector<std::uint8_t> hinge_removed_;
   std::vector<std::array<Block, 16>> hinge_blocks_;  // (a, b) at 4 a + b
-  Sparse hessian_;
-  Eigen::SimplicialLDLT<Sparse> cholesky_;
+  std::vector<Mat3> hessian_;                        // its blocks, as Block indexes them
+  // Its part no iterate changes (masses, hinges), rebuilt after a hinge is cut.
+  std::vector<Mat3> constant_hessian_;
+  bool constant_stale_ = true;
+  std::uint32_t block_rows_ = 0;
+  BlockCholesky cholesky_;
   bool factored_ = false;  // cholesky_ holds a factorisation to keep
   std::vector<Vec3> x0_, y_, trial_;
   Dense gradient_, direction_;
