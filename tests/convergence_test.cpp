@@ -8,6 +8,7 @@
 #include "physics/executor.hpp"
 #include "scene/thorax_scene.hpp"
 #include "surgery/cautery.hpp"
+#include "tissue/implicit_fascia.hpp"
 #include "tissue/mesh_object.hpp"
 #include "tissue/tissue_step.hpp"
 
@@ -116,6 +117,27 @@ TEST(Convergence, TenTimesStifferFasciaSagsTenToTheThirdLess) {
   const double coagulated = fascia_sag(12, 40, e, 128, true, d);
   EXPECT_NEAR(soft / stiff, std::cbrt(10.0), 0.05);
   EXPECT_NEAR(coagulated, stiff, 0.02 * stiff);
+}
+
+// The same fascia solved by the implicit membrane step (tissue/implicit_fascia.hpp) with one
+// modulus (the toe's, the XPBD rows' E: a linear spring per edge, as XPBD's distance rows) and
+// the plate's bending rests where the converged XPBD solve rests: one 5 ms step, no substeps.
+TEST(Convergence, TheFasciaSolvedImplicitlyRestsWhereConvergedXpbdRests) {
+  const physics::MembraneMaterial m = tissue::default_fascia_membrane();
+  const double xpbd = fascia_sag(12, 40, m.youngs_modulus, 128);
+  tissue::TissueWorld w;
+  w.model.solver = tissue::default_solver();
+  const std::uint32_t mesh = tissue::add_fascia(w, tissue::default_fascia_params());
+  tissue::finish_setup(w);
+  const physics::StiffeningMembrane linear{m.youngs_modulus, m.youngs_modulus, Real(0.05),
+                                           m.thickness, Real(1100)};
+  tissue::ImplicitFascia fascia = tissue::make_implicit_fascia(
+      w, mesh, linear, m.effective_bending_stiffness(), w.model.solver.dt);
+  for (int k = 0; k < 300; ++k)
+    ASSERT_TRUE(tissue::step_implicit_fascia(fascia, w, Vec3(0, -9.81, 0), {}, {}, {}).ok);
+  const double implicit = max_displacement(w, w.meshes[mesh]);
+  EXPECT_GT(implicit, 0.5e-3);
+  EXPECT_NEAR(implicit, xpbd, 0.02 * xpbd);
 }
 
 }  // namespace

@@ -139,6 +139,7 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
   y_.resize(n);
   trial_.resize(n);
   gradient_.resize(3 * block_rows_);
+  trial_gradient_.resize(3 * block_rows_);
   direction_.resize(3 * block_rows_);
 }
 
@@ -149,74 +150,60 @@ Real ImplicitMembrane::gap(const MembraneContact& c, std::span<const Vec3> x,
   return c.normal.dot(x[c.vertex] - point);
 }
 
-Real ImplicitMembrane::potential(std::span<const Vec3> x, std::span<const Vec3> bx,
-                                 const ImplicitLoads& loads, Real contact_k) const {
+Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> bx,
+                                const ImplicitLoads& loads, Real contact_k, Dense& gradient) const {
   const std::span<const Vec3> force = loads.force;
   const Real inverse_h2 = 1 / (h_ * h_);
   Real phi = 0;  // (unit: J), relative to x = y for the inertial and the external terms
-  for (std::uint32_t v : free_vertices_) {
-    const Vec3 dx = x[v] - y_[v];
-    phi += Real(0.5) * mass_[v] * inverse_h2 * dx.squaredNorm();
-    if (!force.empty()) phi -= force[v].dot(dx);
-  }
-  for (std::size_t e = 0; e < edges_.size(); ++e) {
-    if (removed_[e]) continue;
-    phi += energy(edges_[e].spring, (x[edges_[e].i] - x[edges_[e].j]).norm());
-  }
-  for (std::size_t k = 0; k < hinges_.size(); ++k) {
-    if (hinge_removed_[k]) continue;
-    phi += Real(0.5) * hinges_[k].stiffness * hinge_curvature(hinges_[k], x).squaredNorm();
-  }
-  for (std::uint32_t b = 0; b < body_count_; ++b)
-    phi += Real(0.5) * body_weight_[b] * (bx[b] - body_target_[b]).squaredNorm();
-  for (const MembraneContact& c : loads.contacts) {
-    const Real g = std::min(Real(0), gap(c, x, bx));
-    phi += Real(0.5) * contact_k * g * g;
-  }
-  return phi;
-}
-
-void ImplicitMembrane::gradient(std::span<const Vec3> x, std::span<const Vec3> bx,
-                                const ImplicitLoads& loads, Real contact_k) {
-  const std::span<const Vec3> force = loads.force;
-  const Real inverse_h2 = 1 / (h_ * h_);
   for (std::uint32_t a = 0; a < free_vertices_.size(); ++a) {
     const std::uint32_t v = free_vertices_[a];
-    Vec3 g = mass_[v] * inverse_h2 * (x[v] - y_[v]);
-    if (!force.empty()) g -= force[v];
-    gradient_.segment<3>(3 * a) = g;
+    const Vec3 dx = x[v] - y_[v];
+    phi += Real(0.5) * mass_[v] * inverse_h2 * dx.squaredNorm();
+    Vec3 g = mass_[v] * inverse_h2 * dx;
+    if (!force.empty()) {
+      phi -= force[v].dot(dx);
+      g -= force[v];
+    }
+    gradient.segment<3>(3 * a) = g;
   }
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     if (removed_[e]) continue;
     const MembraneEdge& edge = edges_[e];
     const Vec3 d = x[edge.i] - x[edge.j];
     const Real l = d.norm();
+    phi += energy(edge.spring, l);
     if (!(l > Real(1e-12))) continue;
     const Vec3 g = tension(edge.spring, l) / l * d;  // dE/dx_i (unit: N)
     const std::uint32_t a = free_index_[edge.i], b = free_index_[edge.j];
-    if (a != kFixed) gradient_.segment<3>(3 * a) += g;
-    if (b != kFixed) gradient_.segment<3>(3 * b) -= g;
+    if (a != kFixed) gradient.segment<3>(3 * a) += g;
+    if (b != kFixed) gradient.segment<3>(3 * b) -= g;
   }
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     if (hinge_removed_[k]) continue;
     const MembraneHinge& hinge = hinges_[k];
-    const Vec3 kappa = hinge.stiffness * hinge_curvature(hinge, x);  // (unit: N)
+    const Vec3 curvature = hinge_curvature(hinge, x);
+    phi += Real(0.5) * hinge.stiffness * curvature.squaredNorm();
+    const Vec3 kappa = hinge.stiffness * curvature;  // (unit: N)
     for (std::uint32_t p = 0; p < 4; ++p) {
       const std::uint32_t a = free_index_[hinge.v[p]];
-      if (a != kFixed) gradient_.segment<3>(3 * a) += hinge.w[p] * kappa;
+      if (a != kFixed) gradient.segment<3>(3 * a) += hinge.w[p] * kappa;
     }
   }
   const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
-  for (std::uint32_t b = 0; b < body_count_; ++b)
-    gradient_.segment<3>(3 * (free_rows + b)) = body_weight_[b] * (bx[b] - body_target_[b]);
+  for (std::uint32_t b = 0; b < body_count_; ++b) {
+    phi += Real(0.5) * body_weight_[b] * (bx[b] - body_target_[b]).squaredNorm();
+    gradient.segment<3>(3 * (free_rows + b)) = body_weight_[b] * (bx[b] - body_target_[b]);
+  }
   for (const MembraneContact& c : loads.contacts) {
     const Real g = gap(c, x, bx);
     if (g >= 0) continue;
+    phi += Real(0.5) * contact_k * g * g;
     const Vec3 push = contact_k * g * c.normal;  // d/dx of k/2 g^2 (unit: N)
     const std::uint32_t a = free_index_[c.vertex];
-    if (a != kFixed) gradient_.segment<3>(3 * a) += push;
-    if (c.body != kNoMembraneBody) gradient_.segment<3>(3 * (free_rows + c.body)) -= push;
+    if (a != kFixed) gradient.segment<3>(3 * a) += push;
+    if (c.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + c.body)) -= push;
   }
+  return phi;
 }
 
 bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx,
@@ -311,7 +298,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       largest = std::max(largest, gradient_.segment<3>(r).norm());
     return largest;
   };
-  gradient(x, body_x_, loads, contact_k);
+  Real phi = evaluate(x, body_x_, loads, contact_k, gradient_);
   report.residual = largest_imbalance();
   std::copy(x.begin(), x.end(), trial_.begin());
   // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
@@ -332,11 +319,10 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     cholesky_.solve({direction_.data(), static_cast<std::size_t>(direction_.size())});
     // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
     // (whatever iterate it was made at), so the direction descends.
-    const Real phi = potential(x, body_x_, loads, contact_k);
     Real slope = 0;  // a plain loop: GCC 12 warns falsely in Eigen's AVX-512 dot product
     for (Eigen::Index k = 0; k < gradient_.size(); ++k)
       slope += gradient_[k] * direction_[k];
-    Real alpha = 1;
+    Real alpha = 1, trial_phi = 0;
     bool accepted = false;
     for (int halving = 0; halving < 30 && !accepted; ++halving, alpha *= Real(0.5)) {
       const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
@@ -344,8 +330,9 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
         trial_[free_vertices_[a]] = x[free_vertices_[a]] + alpha * direction_.segment<3>(3 * a);
       for (std::uint32_t b = 0; b < body_count_; ++b)
         body_trial_[b] = body_x_[b] + alpha * direction_.segment<3>(3 * (free_rows + b));
-      accepted =
-          potential(trial_, body_trial_, loads, contact_k) <= phi + Real(1e-4) * alpha * slope;
+      // Phi and its gradient at the trial together: the full step is nearly always taken.
+      trial_phi = evaluate(trial_, body_trial_, loads, contact_k, trial_gradient_);
+      accepted = trial_phi <= phi + Real(1e-4) * alpha * slope;
     }
     if (!accepted) {
       if (refactor) break;  // a fresh Newton step finds no descent: solved to Phi's rounding
@@ -355,8 +342,9 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     for (std::uint32_t u : free_vertices_)
       x[u] = trial_[u];
     body_x_ = body_trial_;
+    phi = trial_phi;
+    gradient_.swap(trial_gradient_);
     const Real before = report.residual;
-    gradient(x, body_x_, loads, contact_k);
     report.residual = largest_imbalance();
     // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate.
     refactor = report.residual > params.kept_matrix_ratio * before;

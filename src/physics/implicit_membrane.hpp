@@ -146,12 +146,10 @@ class ImplicitMembrane {
     Block ii = kFixed, jj = kFixed, ij = kFixed;
   };
 
-  // Phi at x, and its gradient over the free rows into gradient_.
-  // bx: the bodies' positions.
-  Real potential(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
-                 Real contact_k) const;
-  void gradient(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
-                Real contact_k);
+  // Phi at x (bx: the bodies' positions), and its gradient over the free rows and the bodies'
+  // into `gradient`: one pass over the edges for both.
+  Real evaluate(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
+                Real contact_k, Dense& gradient) const;
   bool factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
                       Real contact_k);
   // A contact's gap at x (with its body at bx), and its body's row or kFixed.
@@ -183,7 +181,7 @@ class ImplicitMembrane {
   BlockCholesky cholesky_;
   bool factored_ = false;  // cholesky_ holds a factorisation to keep
   std::vector<Vec3> x0_, y_, trial_;
-  Dense gradient_, direction_;
+  Dense gradient_, trial_gradient_, direction_;
 };
 
 }  // namespace imasim::physics
