@@ -135,7 +135,12 @@ void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile) {
 
 physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec) {
   tissue::TissueWorld& w = scene.patch.world;
-  physics::StepResult r = tissue::step_tissue_dynamics(w, exec);
+  Stopwatch fascia_clock;
+  const physics::StepResult fascia = step_scene_fascia(scene);  // nothing without it
+  const double fascia_seconds = fascia_clock.lap();
+  physics::StepResult r = fascia.ok() ? tissue::step_tissue_dynamics(w, exec) : fascia;
+  release_scene_fascia(scene);
+  r.profile[physics::Stage::solve] += fascia_seconds;
   if (!r.ok()) return r;
   Stopwatch clock;
   // Nothing should be inside the heart now; a particle that is was missed by the gathering.

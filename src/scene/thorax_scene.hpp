@@ -5,6 +5,7 @@
 // One step, in the order of the architecture: advance the heart (or hold it, static mode) and
 // move the anchored boundary with it; engine step, XSPH, couplings; the heart as a collider;
 // surfaces, the fine vessel and the strand ends.
+#include <optional>
 #include <vector>
 
 #include "physics/executor.hpp"
@@ -13,6 +14,7 @@
 #include "scene/chest_skeleton.hpp"
 #include "scene/console_settings.hpp"
 #include "scene/heart_series.hpp"
+#include "scene/implicit_fascia_scene.hpp"
 #include "scene/ports.hpp"
 #include "tissue/heart_field.hpp"
 #include "tissue/surface_contacts.hpp"
@@ -61,6 +63,9 @@ struct ThoraxScene {
   // What set-up repaired or decided on the user's behalf (a capped heart mesh, an automatic
   // placement), for the user to read.
   std::vector<std::string> setup_notes;
+  // The fascia solved by the implicit membrane step instead of its XPBD rows
+  // (use_implicit_fascia; tissue-only runs), or XPBD when empty.
+  std::optional<SceneImplicitFascia> implicit_fascia;
 };
 
 // Throws MeshFileError when a heart phase file cannot be loaded, HeartPlacementError when the

@@ -26,9 +26,8 @@ ImplicitFascia make_implicit_fascia(const TissueWorld& world, std::uint32_t mesh
   }
   ImplicitFascia fascia;
   fascia.mesh = mesh;
-  fascia.membrane = std::make_unique<physics::ImplicitMembrane>(
-      std::move(mass), fixed, physics::membrane_springs(rest, material), h,
-      physics::membrane_hinges(rest, bending_stiffness), bodies);
+  fascia.membrane.emplace(std::move(mass), fixed, physics::membrane_springs(rest, material), h,
+                          physics::membrane_hinges(rest, bending_stiffness), bodies);
   fascia.x.resize(object.particle_count);
   fascia.v.resize(object.particle_count);
   return fascia;

@@ -6,7 +6,7 @@
 // interior edges hinges of the bending stiffness D. The first piece of issue 41's fascia at its
 // real stiffness: the scene's step does not call it yet (docs/physics.md).
 #include <cstdint>
-#include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -17,8 +17,8 @@
 namespace imasim::tissue {
 
 struct ImplicitFascia {
-  std::uint32_t mesh = 0;  // in world.meshes
-  std::unique_ptr<physics::ImplicitMembrane> membrane;
+  std::uint32_t mesh = 0;                             // in world.meshes
+  std::optional<physics::ImplicitMembrane> membrane;  // set by make_implicit_fascia
   std::vector<Vec3> x, v;  // the mesh's vertices, mesh-local, as the step reads and writes them
 };
 

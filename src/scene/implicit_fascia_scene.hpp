@@ -1,0 +1,43 @@
+#pragma once
+// The thorax scene's fascia solved by the implicit membrane step (tissue/implicit_fascia.hpp)
+// instead of its XPBD rows, for tissue-only runs (tests and benches: the session's instruments
+// do not reach it yet, docs/physics.md). Each step, before the XPBD step of everything else:
+// the heart's, the wall's and the floor's contact rows on the fascia become the implicit step's
+// frictionless contact planes (each row's end-of-step surface point moved out by its margin) and
+// leave the XPBD set; the fascia is stepped; then its particles are held still (kinematic) while
+// XPBD steps the vessel and the fat, which read it as a boundary (the strands' ends, the
+// fascia -> fat coupling), and given back their mass and the implicit step's velocity after.
+#include <cstdint>
+#include <vector>
+
+#include "physics/step.hpp"
+#include "tissue/implicit_fascia.hpp"
+
+namespace imasim::scene {
+
+struct ThoraxScene;
+
+struct SceneImplicitFascia {
+  tissue::ImplicitFascia fascia;
+  physics::ImplicitSolveParams solve;
+  physics::ImplicitStepReport last;
+  std::vector<physics::MembraneContact> contacts;  // scratch, sized at set-up
+  std::vector<Real> inverse_mass;                  // the fascia's, kept while XPBD steps
+  std::vector<Vec3> velocity;
+};
+
+// Replaces the fascia's XPBD rows (distance and dihedral: removed from the constraint system) by
+// the implicit step with `material` and the fascia's own bending stiffness. Set-up only; the
+// scene must not be cut afterwards (cuts re-add rows). Throws std::invalid_argument as
+// make_implicit_fascia does.
+void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& material);
+
+// The step's first part (finish_thorax_step calls it after the contacts are gathered): the
+// fascia's contacts taken out of the XPBD set, the fascia stepped, its particles made kinematic.
+// A failed solve comes back as a non-finite status naming the fascia's first particle.
+physics::StepResult step_scene_fascia(ThoraxScene& scene);
+
+// After the XPBD step: the fascia's masses and velocities back.
+void release_scene_fascia(ThoraxScene& scene);
+
+}  // namespace imasim::scene
