@@ -3,7 +3,7 @@
 // block row per vertex (or body) of a mesh's Newton system, the pattern the mesh's adjacency.
 // Why not Eigen's SimplicialLDLT on the scalar matrix: it pays an index lookup per scalar
 // multiply-add, where a block pays one per 27. On the fascia's Hessian (484 vertices, its
-// hinges, a tool's body) it factors about three times faster (docs/PERFORMANCE.md,
+// hinges, a tool's body) it factors 3.6-4.1 times faster (docs/PERFORMANCE.md,
 // BM_MembraneFactor). The ordering is Eigen's approximate minimum degree on the block graph.
 //
 // Up-looking (each row of L a sparse triangular solve over the elimination tree, as in Davis's
@@ -49,7 +49,7 @@ class BlockCholesky {
 
   std::uint32_t nodes_ = 0;
   std::vector<std::uint32_t> order_;        // order_[k]: the node eliminated k-th
-  std::vector<std::uint32_t> parent_;       // the elimination tree (nodes_: a root)
+  std::vector<std::uint32_t> parent_;       // the elimination tree (0xffffffff: a root)
   std::vector<std::uint32_t> entry_start_;  // row k's entries of A: entries_[start[k], start[k+1])
   std::vector<Entry> entries_;
   std::vector<std::uint32_t> column_start_;  // column j of L below the diagonal

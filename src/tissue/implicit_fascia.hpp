@@ -23,7 +23,8 @@ struct ImplicitFascia {
 };
 
 // Throws std::invalid_argument for a mesh out of range, a mesh not flat at rest (its hinges) or
-// a material the springs refuse. bending_stiffness: D (unit: N m). h: the step (unit: s).
+// a material the springs refuse. material.density is not read: the masses are the particles'.
+// bending_stiffness: D (unit: N m). h: the step (unit: s).
 ImplicitFascia make_implicit_fascia(const TissueWorld& world, std::uint32_t mesh,
                                     const physics::StiffeningMembrane& material,
                                     Real bending_stiffness, Real h, std::uint32_t bodies = 0);
