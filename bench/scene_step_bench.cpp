@@ -5,6 +5,8 @@
 // implicit membrane step (scene/implicit_fascia_scene.hpp): at the toe's modulus throughout
 // (law:0, the XPBD rows' material) or with the fascia's law (law:1, 2.65 MPa past 5 % strain).
 // Counters: Newton iterations and refactorisations of the fascia's last step.
+// BM_ImplicitFasciaRefit: what a cut of the implicit fascia costs on top of the cut itself, the
+// implicit step rebuilt from the mesh (refit_scene_fascia: springs, hinges, the pattern analysed).
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
@@ -65,5 +67,16 @@ BENCHMARK(BM_SceneStepImplicitFascia)
     ->Arg(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+void BM_ImplicitFasciaRefit(benchmark::State& bench) {
+  imasim::scene::ThoraxScene scene =
+      imasim::scene::make_thorax_scene(imasim::scene::default_thorax_scene_params());
+  const imasim::physics::MembraneMaterial m = imasim::tissue::default_fascia_membrane();
+  imasim::scene::use_implicit_fascia(scene, {m.youngs_modulus, imasim::Real(2.65e6),
+                                             imasim::Real(0.05), m.thickness, imasim::Real(1100)});
+  for (auto _ : bench)
+    imasim::scene::refit_scene_fascia(scene);
+}
+BENCHMARK(BM_ImplicitFasciaRefit)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

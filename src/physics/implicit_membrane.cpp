@@ -13,14 +13,18 @@ std::string edge_name(std::size_t e) {
 }
 
 // The Hessian of one edge's energy with respect to its first end (unit: N/m): the regime's
-// stiffness along the edge, the tension over the length across it (none in compression, which
-// would make the matrix indefinite).
-Mat3 edge_stiffness(const StiffeningSpring& s, const Vec3& d) {
+// stiffness along the edge, the tension over the length across it. In compression that is
+// negative: exact, it keeps Newton quadratic where a slack membrane's bending and mass hold the
+// matrix positive definite; clamped to zero, the matrix is positive definite always but Newton
+// only linear (the fascia draped on the heart, a fifth of its edges slack: 9 iterations a step
+// against 3).
+Mat3 edge_stiffness(const StiffeningSpring& s, const Vec3& d, bool exact) {
   const Real l = d.norm();
   if (!(l > Real(1e-12))) return Mat3::Zero();
   const Vec3 n = d / l;
   const Mat3 along = n * n.transpose();
-  const Real across = std::max(Real(0), tension(s, l)) / l;
+  const Real t = tension(s, l);
+  const Real across = (exact ? t : std::max(Real(0), t)) / l;
   return stiffness_at(s, l) * along + across * (Mat3::Identity() - along);
 }
 
@@ -99,6 +103,11 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
   cholesky_.analyse(block_rows_, pairs);
+  pairs_ = pairs;
+  held_.assign(free_rows, kNone);
+  pending_.assign(free_rows, kNone);
+  released_.assign(free_rows, 0);
+  factored_held_.assign(free_rows, 0);
   hessian_.assign(block_rows_ + pairs.size(), Mat3::Zero());
   constant_hessian_.assign(hessian_.size(), Mat3::Zero());
   auto block = [&](std::uint32_t a, std::uint32_t b) -> Block {
@@ -194,12 +203,14 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
     phi += Real(0.5) * body_weight_[b] * (bx[b] - body_target_[b]).squaredNorm();
     gradient.segment<3>(3 * (free_rows + b)) = body_weight_[b] * (bx[b] - body_target_[b]);
   }
-  for (const MembraneContact& c : loads.contacts) {
+  for (std::uint32_t k = 0; k < loads.contacts.size(); ++k) {
+    const MembraneContact& c = loads.contacts[k];
+    const std::uint32_t a = free_index_[c.vertex];
+    if (a != kFixed && held_[a] == k) continue;  // held on its plane exactly: no penalty
     const Real g = gap(c, x, bx);
     if (g >= 0) continue;
     phi += Real(0.5) * contact_k * g * g;
     const Vec3 push = contact_k * g * c.normal;  // d/dx of k/2 g^2 (unit: N)
-    const std::uint32_t a = free_index_[c.vertex];
     if (a != kFixed) gradient.segment<3>(3 * a) += push;
     if (c.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + c.body)) -= push;
   }
@@ -207,7 +218,7 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
 }
 
 bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx,
-                                      const ImplicitLoads& loads, Real contact_k) {
+                                      const ImplicitLoads& loads, Real contact_k, bool exact) {
   auto add = [&](Block block, const Mat3& k, Real sign) {
     if (block != kFixed) hessian_[block] += sign * k;
   };
@@ -230,25 +241,90 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
   std::copy(constant_hessian_.begin(), constant_hessian_.end(), hessian_.begin());
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     if (removed_[e]) continue;
-    const Mat3 k = edge_stiffness(edges_[e].spring, x[edges_[e].i] - x[edges_[e].j]);
+    const Mat3 k = edge_stiffness(edges_[e].spring, x[edges_[e].i] - x[edges_[e].j], exact);
     add(blocks_[e].ii, k, 1);
     add(blocks_[e].jj, k, 1);
     add(blocks_[e].ij, k, -1);
   }
   for (std::uint32_t b = 0; b < body_count_; ++b)
     add(body_diagonal_[b], body_weight_[b] * Mat3::Identity(), 1);
-  for (const MembraneContact& c : loads.contacts) {
+  for (std::uint32_t n = 0; n < loads.contacts.size(); ++n) {
+    const MembraneContact& c = loads.contacts[n];
+    const std::uint32_t a = free_index_[c.vertex];
+    if (a != kFixed && held_[a] == n) continue;
     if (gap(c, x, bx) >= 0) continue;
     const Mat3 k = contact_k * c.normal * c.normal.transpose();
-    const std::uint32_t a = free_index_[c.vertex];
     if (a != kFixed) add(diagonal_[a], k, 1);
     if (c.body == kNoMembraneBody) continue;
     add(body_diagonal_[c.body], k, 1);
     if (a == kFixed) continue;
     add(body_vertex_[c.body][a], k, -1);
   }
+  filter_held(loads);
   return cholesky_.factorize({hessian_.data(), block_rows_},
                              {hessian_.data() + block_rows_, hessian_.size() - block_rows_});
+}
+
+void ImplicitMembrane::filter_held(const ImplicitLoads& loads) {
+  const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
+  for (std::uint32_t a = 0; a < free_rows; ++a) {
+    factored_held_[a] = held_[a] != kNone;
+    if (held_[a] == kNone) continue;
+    const Vec3& n = loads.contacts[held_[a]].normal;
+    const Mat3 along = n * n.transpose();
+    const Mat3 s = Mat3::Identity() - along;
+    Mat3& d = hessian_[diagonal_[a]];
+    // The normal's own stiffness the mass's: any positive value keeps the row's normal step zero.
+    d = s * d * s + mass_[free_vertices_[a]] / (h_ * h_) * along;
+  }
+  for (std::size_t p = 0; p < pairs_.size(); ++p) {
+    const auto [lo, hi] = pairs_[p];  // the block is A(lo, hi); A(hi, lo) its transpose
+    const bool held_lo = lo < free_rows && held_[lo] != kNone;
+    const bool held_hi = hi < free_rows && held_[hi] != kNone;
+    if (!held_lo && !held_hi) continue;
+    Mat3& b = hessian_[block_rows_ + p];
+    if (held_lo) {
+      const Vec3& n = loads.contacts[held_[lo]].normal;
+      b = (Mat3::Identity() - n * n.transpose()) * b;
+    }
+    if (held_hi) {
+      const Vec3& n = loads.contacts[held_[hi]].normal;
+      b = b * (Mat3::Identity() - n * n.transpose());
+    }
+  }
+}
+
+Real ImplicitMembrane::largest_imbalance(const ImplicitLoads& loads) const {
+  const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
+  Real largest = 0;
+  for (std::uint32_t a = 0; a < block_rows_; ++a) {
+    Vec3 g = gradient_.segment<3>(3 * a);
+    if (a < free_rows && held_[a] != kNone) {
+      // The plane supplies the normal part: held, the gradient's normal component is the
+      // plane's reaction, pushing out while it is positive.
+      const Vec3& n = loads.contacts[held_[a]].normal;
+      g -= std::max(Real(0), n.dot(g)) * n;
+    }
+    largest = std::max(largest, g.norm());
+  }
+  return largest;
+}
+
+void ImplicitMembrane::project_crossing(const ImplicitLoads& loads, std::span<const Vec3> x) {
+  std::fill(pending_.begin(), pending_.end(), kNone);
+  for (std::uint32_t k = 0; k < loads.contacts.size(); ++k) {
+    const MembraneContact& c = loads.contacts[k];
+    const std::uint32_t a = free_index_[c.vertex];
+    if (c.body != kNoMembraneBody || a == kFixed || held_[a] != kNone || released_[a] ||
+        pending_[a] != kNone)
+      continue;
+    const Real at_trial = c.normal.dot(trial_[c.vertex] - c.point);
+    // Only a vertex this trial carried through: one already under a plane (a second plane's
+    // projection put it there) keeps the penalty, so the trial stays continuous in its length.
+    if (at_trial >= 0 || c.normal.dot(x[c.vertex] - c.point) < 0) continue;
+    trial_[c.vertex] -= at_trial * c.normal;
+    pending_[a] = k;
+  }
 }
 
 ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
@@ -292,31 +368,61 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     // balance at every vertex and cost the stiff membrane a damped Newton step or two.
     x[u] = x[u] + h_ * v[u];
   }
-  auto largest_imbalance = [&] {
-    Real largest = 0;
-    for (Eigen::Index r = 0; r < gradient_.size(); r += 3)
-      largest = std::max(largest, gradient_.segment<3>(r).norm());
-    return largest;
+  // The active set starts with the vertices the first iterate finds on or under a fixed plane,
+  // put on it.
+  std::fill(held_.begin(), held_.end(), kNone);
+  std::fill(released_.begin(), released_.end(), 0);
+  for (std::uint32_t k = 0; k < loads.contacts.size(); ++k) {
+    const MembraneContact& c = loads.contacts[k];
+    const std::uint32_t a = free_index_[c.vertex];
+    if (!params.hold_fixed_planes || c.body != kNoMembraneBody || a == kFixed || held_[a] != kNone)
+      continue;
+    const Real g = c.normal.dot(x[c.vertex] - c.point);
+    if (g > params.hold_distance) continue;
+    x[c.vertex] -= g * c.normal;
+    held_[a] = k;
+  }
+  const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
+  auto held_changed = [&] {
+    for (std::uint32_t a = 0; a < free_rows; ++a)
+      if ((held_[a] != kNone) != bool(factored_held_[a])) return true;
+    return false;
   };
   Real phi = evaluate(x, body_x_, loads, contact_k, gradient_);
-  report.residual = largest_imbalance();
+  report.residual = largest_imbalance(loads);
   std::copy(x.begin(), x.end(), trial_.begin());
   // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
-  // while it converges fast, and refactored when it does not.
-  bool refactor = !factored_;
+  // while it converges fast and holds the same vertices, and refactored when not.
+  bool refactor = !factored_ || held_changed();
+  auto along_planes = [&](Dense& d) {  // a held row's normal part taken out
+    for (std::uint32_t a = 0; a < free_rows; ++a) {
+      if (held_[a] == kNone) continue;
+      const Vec3& normal = loads.contacts[held_[a]].normal;
+      d.segment<3>(3 * a) -= normal.dot(d.segment<3>(3 * a)) * normal;
+    }
+  };
   while (report.iterations < params.max_iterations && report.residual > params.tolerance) {
     if (refactor) {
-      if (!factor_hessian(x, body_x_, loads, contact_k)) {
+      // The exact Hessian where it is positive definite, else (compression the bending and the
+      // mass cannot hold) the clamped one.
+      bool factored = factor_hessian(x, body_x_, loads, contact_k, true);
+      ++report.factorizations;
+      if (!factored) {
+        factored = factor_hessian(x, body_x_, loads, contact_k, false);
+        ++report.factorizations;
+      }
+      if (!factored) {
         report.ok = false;
         factored_ = false;
         break;
       }
       factored_ = true;
-      ++report.factorizations;
     }
     ++report.iterations;
     direction_ = -gradient_;  // the step solves H d = -grad
+    along_planes(direction_);
     cholesky_.solve({direction_.data(), static_cast<std::size_t>(direction_.size())});
+    along_planes(direction_);  // exact, whatever normals the kept factorisation held
     // Backtracking (Armijo): the full step unless it raises Phi. The matrix is positive definite
     // (whatever iterate it was made at), so the direction descends.
     Real slope = 0;  // a plain loop: GCC 12 warns falsely in Eigen's AVX-512 dot product
@@ -325,11 +431,11 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     Real alpha = 1, trial_phi = 0;
     bool accepted = false;
     for (int halving = 0; halving < 30 && !accepted; ++halving, alpha *= Real(0.5)) {
-      const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
       for (std::uint32_t a = 0; a < free_rows; ++a)
         trial_[free_vertices_[a]] = x[free_vertices_[a]] + alpha * direction_.segment<3>(3 * a);
       for (std::uint32_t b = 0; b < body_count_; ++b)
         body_trial_[b] = body_x_[b] + alpha * direction_.segment<3>(3 * (free_rows + b));
+      if (params.hold_fixed_planes) project_crossing(loads, x);
       // Phi and its gradient at the trial together: the full step is nearly always taken.
       trial_phi = evaluate(trial_, body_trial_, loads, contact_k, trial_gradient_);
       accepted = trial_phi <= phi + Real(1e-4) * alpha * slope;
@@ -344,15 +450,37 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     body_x_ = body_trial_;
     phi = trial_phi;
     gradient_.swap(trial_gradient_);
+    // The vertices the trial put on planes are held from here; those their plane would have to
+    // pull are let go for the rest of the step.
+    for (std::uint32_t a = 0; a < free_rows; ++a) {
+      if (pending_[a] != kNone) held_[a] = pending_[a];
+      if (held_[a] == kNone) continue;
+      if (loads.contacts[held_[a]].normal.dot(gradient_.segment<3>(3 * a)) < -params.tolerance) {
+        held_[a] = kNone;
+        released_[a] = 1;
+      }
+    }
+    if (held_changed()) refactor = true;  // the matrix filters the held rows
     const Real before = report.residual;
-    report.residual = largest_imbalance();
+    report.residual = largest_imbalance(loads);
     // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate.
-    refactor = report.residual > params.kept_matrix_ratio * before;
+    refactor = refactor || report.residual > params.kept_matrix_ratio * before;
   }
   for (std::uint32_t u : free_vertices_)
     v[u] = (x[u] - x0_[u]) / h_;
   for (std::uint32_t b = 0; b < body_count_; ++b)
     loads.bodies[b].position = body_x_[b];
+  contact_forces_.resize(loads.contacts.size());
+  for (std::uint32_t k = 0; k < loads.contacts.size(); ++k) {
+    const MembraneContact& c = loads.contacts[k];
+    const std::uint32_t a = free_index_[c.vertex];
+    if (a != kFixed && held_[a] == k) {
+      contact_forces_[k] = std::max(Real(0), c.normal.dot(gradient_.segment<3>(3 * a)));
+    } else {
+      const Real g = gap(c, x, body_x_);
+      contact_forces_[k] = g < 0 ? -contact_k * g : Real(0);
+    }
+  }
   return report;
 }
 

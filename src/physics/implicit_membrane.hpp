@@ -3,8 +3,8 @@
 // strain-stiffening springs (stiffening_spring.hpp). One backward-Euler step minimises the
 // incremental potential
 //   Phi(x) = 1/(2 h^2) |x - y|_M^2 + sum_e E_e(|x_i - x_j|) + sum_k E_k(x) + sum_c E_c(x) - f . x,
-// y = x0 + h v0 + h^2 g, E_k the hinges' bending (MembraneHinge), E_c the contacts' penalties
-// (MembraneContact),
+// y = x0 + h v0 + h^2 g, E_k the hinges' bending (MembraneHinge), E_c the penalties of the
+// contacts on tools' bodies (MembraneContact; fixed planes hold their vertices exactly instead),
 // by Newton's method: the Hessian (M / h^2 plus, per edge, the regime's stiffness along the edge
 // and the tension's T / l across it) is factored by sparse Cholesky of 3 x 3 blocks
 // (block_cholesky.hpp; the pattern analysed once at set-up), and each iteration backtracks along
@@ -18,9 +18,11 @@
 // local/global rounds crawl: 8 rounds a 5 ms step left 0.13 N of a 0.3 N press unbalanced and
 // the press 28 % short (docs/physics.md).
 //
-// Across an edge in compression the Hessian takes no (negative) tension term, so the matrix stays
-// positive definite; the line search keeps the step a descent on the true potential. A cut zeroes
-// an edge and keeps the pattern. Fixed vertices are moved by the caller and enter as known.
+// Across an edge in compression the tension term is negative: the Hessian keeps it while the
+// matrix stays positive definite (the mass and the bending hold a slack membrane), and drops it
+// when that factorisation fails, so the matrix factored is positive definite always;
+// the line search keeps the step a descent on the true potential. A cut zeroes an edge and keeps
+// the pattern. Fixed vertices are moved by the caller and enter as known.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -62,9 +64,17 @@ struct MembraneBody {
 };
 
 // A vertex kept on the positive side of a plane (a rigid surface or a tool, linearised for the
-// step: the caller places the plane where the surface will be at the step's end) by a stiff
-// one-sided spring, energy k/2 min(0, gap)^2, gap = n . (x - p): a penalty the Newton solve sees
-// whole. A plane on a body moves with it: gap = n . (x - p - (o - o_start)).
+// step: the caller places the plane where the surface will be at the step's end).
+// - A plane on a body (a tool's proxy) moves with it, gap = n . (x - p - (o - o_start)), and
+//   pushes by a stiff one-sided spring, energy k/2 min(0, gap)^2: a penalty the Newton solve
+//   sees whole.
+// - A fixed plane (no body) holds exactly: a vertex that reaches it (at the step's first iterate,
+//   or when a Newton step would carry it through) is put on it and kept there, sliding freely
+//   along it, until the plane would have to pull it back; then it is let go for the rest of the
+//   step, the penalty its only guard (an active set). Why not the penalty: a membrane resting on
+//   a moving surface (the fascia on the beating heart) reaches the planes one by one, and the
+//   Newton solve, whose line search stops at the first vertex to cross, took 15-20 iterations a
+//   step; holding every crossing vertex at once takes 2-3.
 struct MembraneContact {
   std::uint32_t vertex = 0;
   Vec3 point = Vec3::Zero();    // on the plane (unit: m)
@@ -99,11 +109,16 @@ struct ImplicitSolveParams {
   Real kept_matrix_ratio = Real(0.25);
   // The contacts' penalty (unit: N/m): a vertex pressed with 0.1 N stays 1 um inside.
   Real contact_stiffness = Real(1e5);
+  // A vertex the step's first iterate finds within this of a fixed plane starts on it, held: the
+  // membrane that rested on the plane at the last step's end (unit: m).
+  Real hold_distance = Real(1e-6);
+  // false: a fixed plane is a penalty too, as a body's is (the comparison in the tests).
+  bool hold_fixed_planes = true;
 };
 
 struct ImplicitStepReport {
   std::uint32_t iterations = 0;      // Newton iterations taken
-  std::uint32_t factorizations = 0;  // of them, those that refactored the Hessian
+  std::uint32_t factorizations = 0;  // of the Hessian, a failed exact one counted
   // Largest force imbalance of the step at a free vertex at its end,
   // |m (x - y) / h^2 + grad E - f| (unit: N): zero when the step is solved exactly.
   Real residual = 0;
@@ -129,6 +144,11 @@ class ImplicitMembrane {
   ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
                           const ImplicitSolveParams& params);
 
+  // The normal force each contact of the last step's loads exerted at its end, in their order
+  // (unit: N): a held vertex's the plane's reaction (the force its other loads press it with), a
+  // penalty's k |gap|.
+  std::span<const Real> contact_forces() const { return contact_forces_; }
+
   // A cut: edge e pulls no more; hinge k bends no more.
   void remove_edge(std::size_t e);
   void remove_hinge(std::size_t k);
@@ -150,15 +170,25 @@ class ImplicitMembrane {
   // into `gradient`: one pass over the edges for both.
   Real evaluate(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
                 Real contact_k, Dense& gradient) const;
+  // exact: compressed edges' negative tension term kept (may fail: not positive definite).
   bool factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
-                      Real contact_k);
+                      Real contact_k, bool exact);
   // A contact's gap at x (with its body at bx), and its body's row or kFixed.
   Real gap(const MembraneContact& c, std::span<const Vec3> x, std::span<const Vec3> bx) const;
+  // The held rows' normal taken out of the matrix (S H S + (m / h^2) n n^T, S = I - n n^T), so
+  // that a solve moves them along their planes only.
+  void filter_held(const ImplicitLoads& loads);
+  // The rows' imbalance as convergence reads it: a held row's along its plane, and its normal
+  // part too when the plane would have to pull.
+  Real largest_imbalance(const ImplicitLoads& loads) const;
+  // Vertices a trial carried through a fixed plane put on it, to be held from that iterate on.
+  void project_crossing(const ImplicitLoads& loads, std::span<const Vec3> x);
 
   std::vector<Real> mass_;
   std::vector<MembraneEdge> edges_;
   std::vector<std::uint8_t> removed_;
   Real h_ = 0;
+  static constexpr std::uint32_t kNone = 0xffffffffu;
   std::vector<std::uint32_t> free_index_;     // per vertex: its block row, or kFixed
   std::vector<std::uint32_t> free_vertices_;  // per block row: its vertex
   std::vector<Block> diagonal_;               // per block row
@@ -173,7 +203,13 @@ class ImplicitMembrane {
   std::vector<Real> body_weight_;  // (c / h + k) of each body (unit: N/m)
   std::vector<std::uint8_t> hinge_removed_;
   std::vector<std::array<Block, 16>> hinge_blocks_;  // (a, b) at 4 a + b
-  std::vector<Mat3> hessian_;                        // its blocks, as Block indexes them
+  std::vector<BlockCholesky::Pair> pairs_;           // the off-diagonal blocks' rows, as analysed
+  // The active set, per free row: the contact holding it (kNone: none), the one a trial put it on,
+  // whether it was let go this step, and the rows the kept factorisation held.
+  std::vector<std::uint32_t> held_, pending_;
+  std::vector<std::uint8_t> released_, factored_held_;
+  std::vector<Real> contact_forces_;
+  std::vector<Mat3> hessian_;  // its blocks, as Block indexes them
   // Its part no iterate changes (masses, hinges), rebuilt after a hinge is cut.
   std::vector<Mat3> constant_hessian_;
   bool constant_stale_ = true;

@@ -7,16 +7,11 @@
 
 namespace imasim::scene {
 
-void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& material) {
-  tissue::TissueWorld& w = scene.patch.world;
-  tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
-  const physics::ConstraintMaterial& bend = w.model.materials[mesh.bend_material];
-  if (!(bend.compliance > 0))
-    throw std::invalid_argument("implicit fascia: the fascia's bending has no stiffness to take");
-  SceneImplicitFascia f;
-  f.fascia = tissue::make_implicit_fascia(w, scene.patch.fascia, material, 1 / bend.compliance,
-                                          w.model.solver.dt);
-  // Its XPBD rows go, in the edges' order (the index is a hash map: sort for determinism).
+namespace {
+
+// The fascia's XPBD distance and dihedral rows out of the constraint system, in the edges' order
+// (the index is a hash map: sorted for determinism).
+void remove_fascia_rows(tissue::TissueWorld& w, tissue::MeshObject& mesh) {
   std::vector<std::uint64_t> keys;
   for (const auto& [key, record] : mesh.edges)
     keys.push_back(key);
@@ -28,10 +23,42 @@ void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& 
     record.distance = {};
     record.dihedral = {};
   }
-  f.contacts.reserve(w.state.contacts.rows.capacity());
+}
+
+void build_fascia_solver(ThoraxScene& scene, SceneImplicitFascia& f) {
+  tissue::TissueWorld& w = scene.patch.world;
+  f.fascia = tissue::make_implicit_fascia(w, scene.patch.fascia, f.material, f.bending_stiffness,
+                                          w.model.solver.dt);
+  const tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
   f.inverse_mass.resize(mesh.particle_count);
   f.velocity.resize(mesh.particle_count);
+}
+
+}  // namespace
+
+void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& material) {
+  tissue::TissueWorld& w = scene.patch.world;
+  tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
+  const physics::ConstraintMaterial& bend = w.model.materials[mesh.bend_material];
+  if (!(bend.compliance > 0))
+    throw std::invalid_argument("implicit fascia: the fascia's bending has no stiffness to take");
+  SceneImplicitFascia f;
+  f.material = material;
+  f.bending_stiffness = 1 / bend.compliance;
+  build_fascia_solver(scene, f);
+  remove_fascia_rows(w, mesh);
+  // Sized for the spare vertices cuts bring in, so that a step after a cut allocates nothing.
+  f.contacts.reserve(w.state.contacts.rows.capacity());
+  f.inverse_mass.reserve(mesh.particle_capacity);
+  f.velocity.reserve(mesh.particle_capacity);
   scene.implicit_fascia = std::move(f);
+}
+
+void refit_scene_fascia(ThoraxScene& scene) {
+  if (!scene.implicit_fascia) return;
+  tissue::TissueWorld& w = scene.patch.world;
+  remove_fascia_rows(w, w.meshes[scene.patch.fascia]);
+  build_fascia_solver(scene, *scene.implicit_fascia);
 }
 
 physics::StepResult step_scene_fascia(ThoraxScene& scene) {
@@ -51,6 +78,7 @@ physics::StepResult step_scene_fascia(ThoraxScene& scene) {
   std::erase_if(w.state.contacts.rows, on_fascia);
   f.last = tissue::step_implicit_fascia(f.fascia, w, w.model.objects[mesh.object].gravity,
                                         f.contacts, {}, f.solve);
+  f.unsolved_steps += f.last.residual > f.solve.tolerance;
   if (!f.last.ok) {
     result.status = physics::StepStatus::non_finite;
     result.particle = first;

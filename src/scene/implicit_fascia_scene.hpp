@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "physics/membrane_springs.hpp"
 #include "physics/step.hpp"
 #include "tissue/implicit_fascia.hpp"
 
@@ -19,18 +20,28 @@ struct ThoraxScene;
 
 struct SceneImplicitFascia {
   tissue::ImplicitFascia fascia;
+  physics::StiffeningMembrane material;  // the edges' law, kept to rebuild after a cut
+  Real bending_stiffness = 0;            // D (unit: N m)
   physics::ImplicitSolveParams solve;
   physics::ImplicitStepReport last;
+  // Steps whose Newton solve ran out of iterations above the tolerance (last.residual says by how
+  // much): rare buckling of the slack fascia, counted so a run can report it.
+  std::uint64_t unsolved_steps = 0;
   std::vector<physics::MembraneContact> contacts;  // scratch, sized at set-up
   std::vector<Real> inverse_mass;                  // the fascia's, kept while XPBD steps
   std::vector<Vec3> velocity;
 };
 
 // Replaces the fascia's XPBD rows (distance and dihedral: removed from the constraint system) by
-// the implicit step with `material` and the fascia's own bending stiffness. Set-up only; the
-// scene must not be cut afterwards (cuts re-add rows). Throws std::invalid_argument as
-// make_implicit_fascia does.
+// the implicit step with `material` and the fascia's own bending stiffness. Set-up only; after a
+// cut, refit_scene_fascia. Throws std::invalid_argument as make_implicit_fascia does.
 void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& material);
+
+// After a topology change of the fascia (tissue/topology_change.hpp: a cut, a fragment
+// vaporised): the XPBD rows the change added are removed again, and the implicit step is rebuilt
+// from the mesh as it now is (its new vertices, eq. 5's masses, its edges and hinges; the pattern
+// analysed again). Nothing to do without the implicit fascia.
+void refit_scene_fascia(ThoraxScene& scene);
 
 // The step's first part (finish_thorax_step calls it after the contacts are gathered): the
 // fascia's contacts taken out of the XPBD set, the fascia stepped, its particles made kinematic.
