@@ -45,6 +45,19 @@ TEST(RunRefusals, AnUnmappedTrackerIsCountedByNameAndSaidOnceOnStderr) {
   EXPECT_EQ(f.err.find(said, first + 1), std::string::npos) << f.err;
 }
 
+// `devices` without --listen refuses the options that only listening reads, the default value
+// too, naming what they need.
+TEST(DevicesListen, SecondsAndPortWithoutListenAreRefusedNamingIt) {
+  const std::string exe = IMASIM_EXE;
+  for (const std::string args : {"--seconds 10", "--seconds 3", "--igtl-port 18944"}) {
+    const std::string err = err_file("imasim_devices_needs");
+    const imasim::test::Finished f =
+        imasim::test::run_shell(exe + " devices " + args + " 2>" + err, err);
+    EXPECT_NE(f.exit_code, 0) << args;
+    EXPECT_NE(f.err.find("requires --listen"), std::string::npos) << args << ": " << f.err;
+  }
+}
+
 // `devices --listen` shows what arrives and what each name becomes: a tracker calling its left
 // hand "Tracker" is seen by that name, refused, and told how to map it.
 TEST(DevicesListen, ShowsEachArrivingNameAndTypeAndWhatItBecomes) {

@@ -41,14 +41,18 @@ std::shared_ptr<DevicesOptions> add_devices_command(CLI::App& app) {
                   "Scene file whose devices.* keys map the devices; default: the built-in scene")
       ->check(non_empty());
   cmd->add_flag("--json", opt->json, "Print one JSON object on stdout");
-  cmd->add_flag("--listen", opt->listen,
-                "Listen for OpenIGTLink peers and show which device names and types arrive and "
-                "what each becomes under the scene's mapping");
+  CLI::Option* listen =
+      cmd->add_flag("--listen", opt->listen,
+                    "Listen for OpenIGTLink peers and show which device names and types arrive and "
+                    "what each becomes under the scene's mapping");
+  // Refused without --listen, whatever the value (the default's too): CLI11 says which it needs.
   cmd->add_option("--seconds", opt->listen_seconds, "With --listen: how long to listen")
-      ->check(CLI::Range(0.01, 86400.0));
+      ->check(CLI::Range(0.01, 86400.0))
+      ->needs(listen);
   cmd->add_option("--igtl-port", opt->igtl_port,
                   "With --listen: the port (0: any free); default: the scene's devices.igtl_port")
-      ->check(CLI::Range(0, 65535));
+      ->check(CLI::Range(0, 65535))
+      ->needs(listen);
   return opt;
 }
 
@@ -69,10 +73,6 @@ int run_devices_command(const DevicesOptions& o) {
     if (o.igtl_port >= 0) listen.port = std::uint16_t(o.igtl_port);
     listen.json = o.json;
     return listen_for_devices(settings, listen);
-  }
-  if (o.igtl_port >= 0 || o.listen_seconds != 10) {
-    std::cerr << "devices: --seconds and --igtl-port go with --listen\n";
-    return 2;
   }
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   {
