@@ -32,6 +32,7 @@ void build_fascia_solver(ThoraxScene& scene, SceneImplicitFascia& f) {
   const tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
   f.inverse_mass.resize(mesh.particle_count);
   f.velocity.resize(mesh.particle_count);
+  f.built_revision = mesh.topology_revision;
 }
 
 }  // namespace
@@ -67,6 +68,7 @@ physics::StepResult step_scene_fascia(ThoraxScene& scene) {
   SceneImplicitFascia& f = *scene.implicit_fascia;
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
+  if (mesh.topology_revision != f.built_revision) refit_scene_fascia(scene);  // cut since
   const std::uint32_t first = mesh.first_particle, end = first + mesh.particle_count;
   auto on_fascia = [&](const physics::ContactRow& c) {
     return c.particle >= first && c.particle < end;

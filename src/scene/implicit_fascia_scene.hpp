@@ -22,6 +22,7 @@ struct SceneImplicitFascia {
   tissue::ImplicitFascia fascia;
   physics::StiffeningMembrane material;  // the edges' law, kept to rebuild after a cut
   Real bending_stiffness = 0;            // D (unit: N m)
+  std::uint32_t built_revision = 0;      // the mesh's topology_revision the solver was built at
   physics::ImplicitSolveParams solve;
   physics::ImplicitStepReport last;
   // Steps whose Newton solve ran out of iterations above the tolerance (last.residual says by how
@@ -33,18 +34,21 @@ struct SceneImplicitFascia {
 };
 
 // Replaces the fascia's XPBD rows (distance and dihedral: removed from the constraint system) by
-// the implicit step with `material` and the fascia's own bending stiffness. Set-up only; after a
-// cut, refit_scene_fascia. Throws std::invalid_argument as make_implicit_fascia does.
+// the implicit step with `material` and the fascia's own bending stiffness. Set-up; cuts after it
+// are refitted by the step (refit_scene_fascia). Throws std::invalid_argument as
+// make_implicit_fascia does.
 void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& material);
 
 // After a topology change of the fascia (tissue/topology_change.hpp: a cut, a fragment
 // vaporised): the XPBD rows the change added are removed again, and the implicit step is rebuilt
 // from the mesh as it now is (its new vertices, eq. 5's masses, its edges and hinges; the pattern
-// analysed again). Nothing to do without the implicit fascia.
+// analysed again). step_scene_fascia calls it when the mesh's topology_revision has moved on, so
+// a caller that cuts need not. Nothing to do without the implicit fascia.
 void refit_scene_fascia(ThoraxScene& scene);
 
-// The step's first part (finish_thorax_step calls it after the contacts are gathered): the
-// fascia's contacts taken out of the XPBD set, the fascia stepped, its particles made kinematic.
+// The step's first part (finish_thorax_step calls it after the contacts are gathered): the solver
+// refitted if the fascia was cut since, the fascia's contacts taken out of the XPBD set, the
+// fascia stepped, its particles made kinematic.
 // A failed solve comes back as a non-finite status naming the fascia's first particle.
 physics::StepResult step_scene_fascia(ThoraxScene& scene);
 

@@ -42,6 +42,9 @@ struct MeshObject {
   // in no constraint, on no triangle until used. The edge index (faces and constraints of each
   // edge) is kept only for meshes with spare capacity; it is looked up, never iterated.
   std::uint32_t particle_capacity = 0;
+  // Topology changes applied so far: what was built from the mesh (the implicit fascia's solver)
+  // knows by it when to rebuild.
+  std::uint32_t topology_revision = 0;
   Real total_mass = 0;  // M_total of eq. 5 (unit: kg)
   physics::MaterialId stretch_material = 0, bend_material = 0;
   // Whether rows scale the materials' compliance by their rest geometry (a membrane).

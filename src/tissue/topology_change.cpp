@@ -358,6 +358,7 @@ TopologyChange apply_mesh_edit(TissueWorld& w, std::uint32_t mesh, const MeshEdi
 
   m.normals.resize(n_new);
   geometry::compute_vertex_normals(mesh_positions(w, m), m.triangles, m.normals);
+  ++m.topology_revision;
   return change;
 }
 
@@ -502,6 +503,7 @@ TopologyChange remove_mesh_triangles(TissueWorld& w, std::uint32_t mesh,
   }
   add_edge_constraints(w, m, touched, change);
   geometry::compute_vertex_normals(mesh_positions(w, m), m.triangles, m.normals);
+  ++m.topology_revision;
   return change;
 }
 
