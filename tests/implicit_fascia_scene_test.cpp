@@ -51,11 +51,11 @@ TEST(ImplicitFasciaScene, TheFasciasRowsLeaveAndTheBeatingSceneStepsWithNothingI
     for (const physics::ContactRow& c : w.state.contacts.rows)
       EXPECT_FALSE(c.particle >= first && c.particle < end) << "a fascia row left in XPBD's set";
   }
-  // Solved, on the moving heart too (its planes hold the vertices exactly): measured 4.0 Newton
-  // iterations a step, one step of 100 (the slack fascia buckling) 1.2e-4 N short of the 1e-6 N
-  // tolerance after its 20. With the penalty alone, 13.2 a step and 19 steps unsolved; with the
-  // compressed edges' term always dropped, 9.7 a step.
-  EXPECT_LE(iterations / 100, 5);
+  // Solved, on the moving heart too (its planes hold the vertices exactly): measured 4.8 Newton
+  // iterations a step (the factorisation kept while it converges), one step of 100 (the slack
+  // fascia buckling) 2.5e-4 N short of the 1e-6 N tolerance after its 20. With the penalty alone,
+  // 13.2 a step and 19 steps unsolved; with the compressed edges' term always dropped, 9.7 a step.
+  EXPECT_LE(iterations / 100, 6);
   EXPECT_LE(unsolved, 3);
   EXPECT_EQ(s.implicit_fascia->unsolved_steps, std::uint64_t(unsolved));
   EXPECT_LT(largest_residual, 1e-3);

@@ -103,9 +103,9 @@ TEST(MembraneContact, ASheetOnAHeavingPlaneConvergesInAFewIterationsAStep) {
   const HeaveFigures f = heave(solve, 400);  // two heaves
   EXPECT_LT(f.residual, solve.tolerance);
   EXPECT_LT(f.deepest, 1e-9);  // held on the plane, not pushed out by a penalty
-  // Measured 2.34 a step, 5 at most; the same planes as penalties alone, 6.96 and 20 (and 3 um
+  // Measured 2.36 a step, 6 at most; the same planes as penalties alone, 7.26 and 20 (and 3 um
   // deep).
-  EXPECT_LE(f.most_iterations, 6u);
+  EXPECT_LE(f.most_iterations, 8u);
   EXPECT_LE(f.total_iterations, 3);
   ImplicitSolveParams penalty;
   penalty.hold_fixed_planes = false;

@@ -460,11 +460,11 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
         released_[a] = 1;
       }
     }
-    if (held_changed()) refactor = true;  // the matrix filters the held rows
     const Real before = report.residual;
     report.residual = largest_imbalance(loads);
-    // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate.
-    refactor = refactor || report.residual > params.kept_matrix_ratio * before;
+    // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate, as
+    // is one whose held rows are not the active set's (the matrix filters them).
+    refactor = held_changed() || report.residual > params.kept_matrix_ratio * before;
   }
   for (std::uint32_t u : free_vertices_)
     v[u] = (x[u] - x0_[u]) / h_;
