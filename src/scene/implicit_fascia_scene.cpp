@@ -48,6 +48,7 @@ void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& 
   f.bending_stiffness = 1 / bend.compliance;
   build_fascia_solver(scene, f);
   remove_fascia_rows(w, mesh);
+  mesh.rows_in_xpbd = false;
   // Sized for the spare vertices cuts bring in, so that a step after a cut allocates nothing.
   f.contacts.reserve(w.state.contacts.rows.capacity());
   f.inverse_mass.reserve(mesh.particle_capacity);

@@ -45,6 +45,9 @@ struct MeshObject {
   // Topology changes applied so far: what was built from the mesh (the implicit fascia's solver)
   // knows by it when to rebuild.
   std::uint32_t topology_revision = 0;
+  // false: another solver holds the edges (the implicit fascia), so the edge index's rows may be
+  // empty; a cut still adds rows, which that solver takes out again.
+  bool rows_in_xpbd = true;
   Real total_mass = 0;  // M_total of eq. 5 (unit: kg)
   physics::MaterialId stretch_material = 0, bend_material = 0;
   // Whether rows scale the materials' compliance by their rest geometry (a membrane).
