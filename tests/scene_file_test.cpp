@@ -134,6 +134,17 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
       {"[vessel]\ncenterline_m = [[0, 0, 0], [1, 1, 1]]\n",
        "bad.toml:2: key 'vessel.centerline_m' was retired; instead: the IMA's course is laid out "
        "from the anatomy"},
+      // The law's keys change nothing with XPBD's fascia: refused, naming the solver key.
+      {"[fascia]\n\nlinear_modulus_pa = 2.65e6\n",
+       "bad.toml:3: key 'fascia.linear_modulus_pa': read by the implicit fascia only: set "
+       "fascia.solver = \"implicit\""},
+      {"[fascia]\ntoe_strain = 0.03\n",
+       "bad.toml:2: key 'fascia.toe_strain': read by the implicit fascia only"},
+      {"[fascia]\nsolver = \"implicit\"\nlinear_modulus_pa = 5e4\n",
+       "bad.toml:3: key 'fascia.linear_modulus_pa': the linear region's modulus 50000.0 is below "
+       "the toe's (youngs_modulus_pa 1e+05)"},
+      {"[fascia]\nsolver = \"newton\"\n",
+       "bad.toml:2: key 'fascia.solver': expected \"xpbd\" or \"implicit\", got \"newton\""},
       {"\n[fasica]\nnx = 3\n", "bad.toml:2: unknown table 'fasica'; did you mean 'fascia'?"},
       {"heart_rate_bpm = 70\n",
        "bad.toml:1: key 'heart_rate_bpm': not inside a table; did you mean "
@@ -151,6 +162,19 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
                                                                           << e.what();
     }
   }
+}
+
+TEST(SceneFile, TheImplicitFasciaTakesItsLawFromTheFile) {
+  const ThoraxSceneParams p = parse_scene(
+      "[fascia]\nsolver = \"implicit\"\nlinear_modulus_pa = 1e6\ntoe_strain = 0.08\n", "s.toml");
+  EXPECT_EQ(p.fascia_solver, "implicit");
+  EXPECT_EQ(p.fascia_linear_modulus, Real(1e6));
+  EXPECT_EQ(p.fascia_toe_strain, Real(0.08));
+  EXPECT_EQ(default_thorax_scene_params().fascia_solver, "xpbd");
+  // Printed and read again, the law is kept.
+  const ThoraxSceneParams q = parse_scene(print_scene(p), "printed.toml");
+  EXPECT_EQ(q.fascia_solver, "implicit");
+  EXPECT_EQ(q.fascia_linear_modulus, Real(1e6));
 }
 
 TEST(SceneFile, ReportsEveryErrorInFileOrder) {

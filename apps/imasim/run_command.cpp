@@ -545,6 +545,13 @@ int run_run_command(const RunOptions& o) {
   out["chest_wall_motion_max_m"] = chest_wall_motion;
   out["heart_contacts_max"] = max_contacts;
   out["missed_heart_contacts"] = missed_heart_contacts;  // a warning: should stay 0
+  // The fascia's solver, and with the implicit one the steps whose Newton solve ran out of
+  // iterations above its tolerance (a warning: rare buckling of slack fascia).
+  out["fascia_solver"] = scene.implicit_fascia ? "implicit" : "xpbd";
+  if (scene.implicit_fascia) {
+    out["fascia_unsolved_steps"] = scene.implicit_fascia->unsolved_steps;
+    out["fascia_largest_residual_n"] = scene.implicit_fascia->largest_residual;
+  }
   out["ms_per_step_median"] = median_ms;
   out["profile_ms_per_step"] = profile_report(profile);  // mean per stage
   out["substeps"] = w.model.solver.substeps;

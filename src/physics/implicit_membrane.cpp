@@ -214,6 +214,16 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
     if (a != kFixed) gradient.segment<3>(3 * a) += push;
     if (c.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + c.body)) -= push;
   }
+  for (const MembraneAttachment& h : loads.attachments) {
+    Vec3 target = h.target;
+    if (h.body != kNoMembraneBody) target += bx[h.body] - body_start_[h.body];
+    const Vec3 d = x[h.vertex] - target;
+    phi += Real(0.5) * h.stiffness * d.squaredNorm();
+    const Vec3 pull = h.stiffness * d;  // d/dx of k/2 |d|^2 (unit: N)
+    const std::uint32_t a = free_index_[h.vertex];
+    if (a != kFixed) gradient.segment<3>(3 * a) += pull;
+    if (h.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + h.body)) -= pull;
+  }
   return phi;
 }
 
@@ -259,6 +269,14 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
     add(body_diagonal_[c.body], k, 1);
     if (a == kFixed) continue;
     add(body_vertex_[c.body][a], k, -1);
+  }
+  for (const MembraneAttachment& h : loads.attachments) {
+    const Mat3 k = h.stiffness * Mat3::Identity();
+    const std::uint32_t a = free_index_[h.vertex];
+    if (a != kFixed) add(diagonal_[a], k, 1);
+    if (h.body == kNoMembraneBody) continue;
+    add(body_diagonal_[h.body], k, 1);
+    if (a != kFixed) add(body_vertex_[h.body][a], k, -1);
   }
   filter_held(loads);
   return cholesky_.factorize({hessian_.data(), block_rows_},
@@ -348,6 +366,13 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     if (c.vertex >= mass_.size() || (c.body != kNoMembraneBody && c.body >= body_count_))
       throw std::invalid_argument("implicit membrane: contact " + std::to_string(k) +
                                   " names a vertex or a body out of range");
+  }
+  for (std::size_t k = 0; k < loads.attachments.size(); ++k) {
+    const MembraneAttachment& h = loads.attachments[k];
+    if (h.vertex >= mass_.size() || (h.body != kNoMembraneBody && h.body >= body_count_) ||
+        !(h.stiffness > 0))
+      throw std::invalid_argument("implicit membrane: attachment " + std::to_string(k) +
+                                  " names a vertex or a body out of range, or has no stiffness");
   }
   for (std::uint32_t b = 0; b < body_count_; ++b) {
     const MembraneBody& body = loads.bodies[b];
@@ -489,6 +514,13 @@ void ImplicitMembrane::remove_hinge(std::size_t k) {
   hinge_removed_[k] = 1;
   factored_ = false;
   constant_stale_ = true;
+}
+
+void ImplicitMembrane::scale_edge(std::size_t e, Real factor) {
+  if (e >= edges_.size() || !(factor > 0)) return;
+  edges_[e].spring.toe_stiffness *= factor;
+  edges_[e].spring.linear_stiffness *= factor;
+  factored_ = false;
 }
 
 void ImplicitMembrane::remove_edge(std::size_t e) {

@@ -90,12 +90,30 @@ inline Real contact_force(const MembraneContact& c, const Vec3& x, Real stiffnes
   return gap < 0 ? -stiffness * gap : Real(0);
 }
 
+// A vertex held by a tool (the forceps' grasp): a stiff spring to a target that rides on the
+// tool's body, energy k/2 |x - t - (o - o_start)|^2, or a fixed target without a body. The
+// body attachment of physics/body_attachment.hpp (compliance 1 / k), solved with the membrane.
+struct MembraneAttachment {
+  std::uint32_t vertex = 0;
+  Vec3 target = Vec3::Zero();  // where the body's start puts it (unit: m)
+  std::uint32_t body = kNoMembraneBody;
+  Real stiffness = 0;  // k (unit: N/m)
+};
+
+// The force an attachment's spring pulls its body with, toward the vertex at x (unit: N); moved:
+// how far the body moved in the step (o - o_start).
+inline Vec3 attachment_pull(const MembraneAttachment& a, const Vec3& x,
+                            const Vec3& moved = Vec3::Zero()) {
+  return a.stiffness * (x - a.target - moved);
+}
+
 // What acts on the membrane during one step besides its springs.
 struct ImplicitLoads {
   Vec3 gravity = Vec3::Zero();                // (unit: m/s^2)
   std::span<const Vec3> force;                // per vertex (unit: N), or empty
   std::span<const MembraneContact> contacts;  // any number, a vertex in several
   std::span<MembraneBody> bodies;             // as many as the solver was made for
+  std::span<const MembraneAttachment> attachments = {};
 };
 
 struct ImplicitSolveParams {
@@ -138,9 +156,9 @@ class ImplicitMembrane {
   // One step of length h. x, v: every vertex (unit: m, m/s); the fixed ones' x are their
   // positions at the step's end and are left as they are, as are their v. Throws
   // std::invalid_argument for what it was not made for (x, v or a force not one per vertex,
-  // the bodies' count, a contact naming a vertex or body out of range, a body with neither
-  // stiffness nor damping). The report's residual says how far the step was solved: above the
-  // tolerance when max_iterations ran out.
+  // the bodies' count, a contact or an attachment naming a vertex or body out of range, an
+  // attachment's stiffness not positive, a body with neither stiffness nor damping). The report's
+  // residual says how far the step was solved: above the tolerance when max_iterations ran out.
   ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
                           const ImplicitSolveParams& params);
 
@@ -152,6 +170,9 @@ class ImplicitMembrane {
   // A cut: edge e pulls no more; hinge k bends no more.
   void remove_edge(std::size_t e);
   void remove_hinge(std::size_t k);
+  // Coagulation: edge e's toe and linear stiffness times `factor` (> 0).
+  void scale_edge(std::size_t e, Real factor);
+  std::span<const MembraneEdge> edges() const { return edges_; }
 
   std::size_t free_count() const { return free_vertices_.size(); }
 

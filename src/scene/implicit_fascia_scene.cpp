@@ -1,8 +1,10 @@
 #include "scene/implicit_fascia_scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
+#include "physics/damping.hpp"
 #include "scene/thorax_scene.hpp"
 
 namespace imasim::scene {
@@ -25,14 +27,136 @@ void remove_fascia_rows(tissue::TissueWorld& w, tissue::MeshObject& mesh) {
   }
 }
 
+void stiffen_coagulated_edges(SceneImplicitFascia& f) {
+  physics::ImplicitMembrane& membrane = *f.fascia.membrane;
+  const std::span<const physics::MembraneEdge> edges = membrane.edges();
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (f.edge_stiffened[e]) continue;
+    const physics::MembraneEdge& edge = edges[e];
+    const bool i = edge.i < f.coagulated.size() && f.coagulated[edge.i];
+    const bool j = edge.j < f.coagulated.size() && f.coagulated[edge.j];
+    if (!i && !j) continue;
+    membrane.scale_edge(e, f.coagulated_factor);
+    f.edge_stiffened[e] = 1;
+  }
+}
+
 void build_fascia_solver(ThoraxScene& scene, SceneImplicitFascia& f) {
   tissue::TissueWorld& w = scene.patch.world;
+  const auto bodies = static_cast<std::uint32_t>(w.state.proxies.size());
   f.fascia = tissue::make_implicit_fascia(w, scene.patch.fascia, f.material, f.bending_stiffness,
-                                          w.model.solver.dt);
+                                          w.model.solver.dt, bodies);
   const tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
   f.inverse_mass.resize(mesh.particle_count);
   f.velocity.resize(mesh.particle_count);
   f.built_revision = mesh.topology_revision;
+  f.built_bodies = bodies;
+  f.bodies.resize(bodies);
+  f.force_on_body.resize(bodies);
+  f.touched.resize(bodies);
+  f.edge_stiffened.assign(f.fascia.membrane->edges().size(), 0);
+  stiffen_coagulated_edges(f);
+}
+
+// A hold of compliance 0 (rigid in XPBD) as the implicit step's spring (unit: N/m): 1 um for 1 N.
+constexpr Real kRigidHoldStiffness = Real(1e6);
+
+// An instrument's row on the fascia, while the XPBD step runs: its tag is this bit and its index.
+constexpr std::uint32_t kImplicitRowMark = 0x80000000u;
+
+bool moves_proxy(const std::vector<physics::ProxyBody>& proxies, std::uint32_t body) {
+  return body < proxies.size() && proxies[body].active();
+}
+
+// The instruments' rows and holds on the fascia, and their proxies, as the implicit step's
+// bodies; the fixed planes were taken already.
+void gather_instruments(tissue::TissueWorld& w, SceneImplicitFascia& f, std::uint32_t first,
+                        std::uint32_t end) {
+  const std::vector<physics::ProxyBody>& proxies = w.state.proxies;
+  for (std::uint32_t b = 0; b < f.bodies.size(); ++b) {
+    const physics::ProxyBody& p = proxies[b];
+    // An idle proxy is a body all the same (the solver's rows are fixed at set-up), held where it
+    // is by a unit spring: no contact names it.
+    f.bodies[b] = p.active() ? physics::MembraneBody{p.rest, p.stiffness, p.damping, p.offset}
+                             : physics::MembraneBody{p.offset, 1, 0, p.offset};
+  }
+  // The rows on the fascia that stay are the proxies' (the fixed planes were taken out before).
+  // The XPBD step reorders its rows (by rate band), so each is marked with its index here in
+  // its tag, which the step does not read, and found by it after.
+  f.tool_tags.clear();
+  for (physics::ContactRow& c : w.state.contacts.rows) {
+    if (c.particle < first || c.particle >= end) continue;
+    f.contacts.push_back({c.particle - first, c.point1 + c.margin * c.normal, c.normal, c.body});
+    const auto index = static_cast<std::uint32_t>(f.tool_tags.size());
+    f.tool_tags.push_back(c.tag);
+    c.tag = kImplicitRowMark | index;
+  }
+  f.attachments.clear();
+  for (const physics::BodyAttachmentRow& r : w.state.body_attachments) {
+    if (r.particle < first || r.particle >= end || !moves_proxy(proxies, r.body)) continue;
+    const Real k = r.compliance > 0 ? 1 / r.compliance : kRigidHoldStiffness;
+    f.attachments.push_back({r.particle - first, r.target, r.body, k});
+  }
+}
+
+// What the step left on each proxy: its rows' push (each contact's force, normal to its plane),
+// its holds' pull, summed per body and added to the proxy's spring for the XPBD step.
+void load_proxies(tissue::TissueWorld& w, SceneImplicitFascia& f, std::uint32_t first,
+                  std::size_t fixed_planes) {
+  const std::span<const Real> force = f.fascia.membrane->contact_forces();
+  const physics::Particles& P = w.state.particles;
+  std::fill(f.force_on_body.begin(), f.force_on_body.end(), Vec3::Zero());
+  std::fill(f.touched.begin(), f.touched.end(), 0);
+  f.tool_depth.resize(f.tool_tags.size());
+  for (std::size_t k = 0; k < f.tool_tags.size(); ++k) {
+    const physics::MembraneContact& c = f.contacts[fixed_planes + k];
+    const Vec3 moved = f.bodies[c.body].position - w.state.proxies[c.body].offset;
+    const Real gap = c.normal.dot(P.position[first + c.vertex] - c.point - moved);
+    f.tool_depth[k] = force[fixed_planes + k] > 0 ? std::max(Real(0), -gap) : Real(0);
+    f.force_on_body[c.body] -= force[fixed_planes + k] * c.normal;  // the vertex got +F n
+    f.touched[c.body] = f.touched[c.body] || force[fixed_planes + k] > 0;
+  }
+  f.attachment_pull.resize(f.attachments.size());
+  for (std::size_t k = 0; k < f.attachments.size(); ++k) {
+    const physics::MembraneAttachment& a = f.attachments[k];
+    const Vec3 moved = f.bodies[a.body].position - w.state.proxies[a.body].offset;
+    f.attachment_pull[k] = physics::attachment_pull(a, P.position[first + a.vertex], moved);
+    f.force_on_body[a.body] += f.attachment_pull[k];
+    f.touched[a.body] = 1;
+  }
+  // A proxy the fascia touched is carried by the XPBD step where the implicit step left it, o1,
+  // unless something more (the vessel, the fat, the heart's stop) acts on it there: its spring's
+  // rest is put where the XPBD step's substeps of the coupling alone (each an implicit Euler step,
+  // o - rest shrinking by r_s = c / (c + k h_s)) carry o0 to o1. At rest (o0 = o1) that is
+  // F / k, the fascia's force added to the spring.
+  const Real substeps = Real(w.model.solver.substeps);
+  const Real h = w.model.solver.dt / substeps;
+  for (std::uint32_t b = 0; b < f.bodies.size(); ++b) {
+    physics::ProxyBody& p = w.state.proxies[b];
+    if (!p.active() || !f.touched[b]) continue;
+    const Real r = std::pow(p.damping / (p.damping + p.stiffness * h), substeps);
+    p.rest = (f.bodies[b].position - r * p.offset) / (1 - r);
+  }
+}
+
+// Eq. 4 on the step's velocities, as the XPBD step damps its objects' (physics/damping.hpp): the
+// share k_l of every velocity and k_c of the non-rigid motion removed per 5 ms. Over one step
+// of dt the same shares as over its substeps.
+void damp_fascia(tissue::TissueWorld& w, const tissue::MeshObject& mesh) {
+  const Real dt = w.model.solver.dt;
+  const physics::ObjectParams& object = w.model.objects[mesh.object];
+  physics::Particles& P = w.state.particles;
+  const Real keep = physics::damping_keep(object.linear_damping, dt);
+  const std::uint32_t first = mesh.first_particle, end = first + mesh.particle_count;
+  for (std::uint32_t p = first; p < end; ++p)
+    if (P.inverse_mass[p] > 0) P.velocity[p] *= keep;
+  // The angular pass reads the object's dynamic range as a step finds it; the XPBD step, which
+  // saw the fascia kinematic, finds it again.
+  physics::ObjectRange& range = w.state.scratch.object_ranges[mesh.object];
+  const physics::ObjectRange kept = range;
+  range = {first, end};
+  physics::apply_angular_damping(w.model, w.state, mesh.object, dt);
+  range = kept;
 }
 
 }  // namespace
@@ -51,8 +175,13 @@ void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& 
   mesh.rows_in_xpbd = false;
   // Sized for the spare vertices cuts bring in, so that a step after a cut allocates nothing.
   f.contacts.reserve(w.state.contacts.rows.capacity());
+  f.tool_tags.reserve(w.state.contacts.rows.capacity());
+  f.tool_depth.reserve(w.state.contacts.rows.capacity());
+  f.attachments.reserve(mesh.particle_capacity);
+  f.attachment_pull.reserve(mesh.particle_capacity);
   f.inverse_mass.reserve(mesh.particle_capacity);
   f.velocity.reserve(mesh.particle_capacity);
+  f.coagulated.reserve(mesh.particle_capacity);
   scene.implicit_fascia = std::move(f);
 }
 
@@ -63,25 +192,50 @@ void refit_scene_fascia(ThoraxScene& scene) {
   build_fascia_solver(scene, *scene.implicit_fascia);
 }
 
+void coagulate_scene_fascia(ThoraxScene& scene, std::span<const std::uint8_t> coagulated,
+                            Real factor) {
+  if (!scene.implicit_fascia) return;
+  SceneImplicitFascia& f = *scene.implicit_fascia;
+  const tissue::MeshObject& mesh = scene.patch.world.meshes[scene.patch.fascia];
+  f.coagulated_factor = factor;
+  f.coagulated.resize(mesh.particle_count, 0);
+  bool more = false;
+  for (std::uint32_t k = 0; k < mesh.particle_count; ++k) {
+    const std::uint32_t p = mesh.first_particle + k;
+    const std::uint8_t now = p < coagulated.size() ? coagulated[p] : 0;
+    more = more || (now && !f.coagulated[k]);
+    f.coagulated[k] = now;
+  }
+  // A solver built before a cut is refitted by the step, which stiffens its edges then.
+  if (more && f.built_revision == mesh.topology_revision) stiffen_coagulated_edges(f);
+}
+
 physics::StepResult step_scene_fascia(ThoraxScene& scene) {
   physics::StepResult result;
   if (!scene.implicit_fascia) return result;
   SceneImplicitFascia& f = *scene.implicit_fascia;
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& mesh = w.meshes[scene.patch.fascia];
-  if (mesh.topology_revision != f.built_revision) refit_scene_fascia(scene);  // cut since
+  // Cut since, or the instruments' proxies set up since.
+  if (mesh.topology_revision != f.built_revision || f.built_bodies != w.state.proxies.size())
+    refit_scene_fascia(scene);
   const std::uint32_t first = mesh.first_particle, end = first + mesh.particle_count;
-  auto on_fascia = [&](const physics::ContactRow& c) {
-    return c.particle >= first && c.particle < end;
+  auto fixed_plane = [&](const physics::ContactRow& c) {
+    return c.particle >= first && c.particle < end && !moves_proxy(w.state.proxies, c.body);
   };
   f.contacts.clear();
   for (const physics::ContactRow& c : w.state.contacts.rows)
-    if (on_fascia(c))
+    if (fixed_plane(c))
       f.contacts.push_back({c.particle - first, c.point1 + c.margin * c.normal, c.normal});
-  std::erase_if(w.state.contacts.rows, on_fascia);
+  std::erase_if(w.state.contacts.rows, fixed_plane);
+  const std::size_t fixed_planes = f.contacts.size();
+  gather_instruments(w, f, first, end);
   f.last = tissue::step_implicit_fascia(f.fascia, w, w.model.objects[mesh.object].gravity,
-                                        f.contacts, {}, f.solve);
+                                        f.contacts, f.bodies, f.solve, f.attachments);
+  load_proxies(w, f, first, fixed_planes);
+  damp_fascia(w, mesh);
   f.unsolved_steps += f.last.residual > f.solve.tolerance;
+  f.largest_residual = std::max(f.largest_residual, f.last.residual);
   if (!f.last.ok) {
     result.status = physics::StepStatus::non_finite;
     result.particle = first;
@@ -104,6 +258,31 @@ void release_scene_fascia(ThoraxScene& scene) {
     P.inverse_mass[mesh.first_particle + k] = f.inverse_mass[k];
     P.velocity[mesh.first_particle + k] = f.velocity[k];
   }
+  // The rows and holds did nothing in XPBD (their particles had no mass): the implicit step's
+  // impulses over the step are theirs, and their proxies'.
+  physics::State& state = scene.patch.world.state;
+  const Real dt = scene.patch.world.model.solver.dt;
+  const std::span<const Real> force = f.fascia.membrane->contact_forces();
+  const std::size_t fixed_planes = f.contacts.size() - f.tool_tags.size();
+  for (physics::ContactRow& row : state.contacts.rows) {
+    if (!(row.tag & kImplicitRowMark)) continue;
+    const std::uint32_t k = row.tag & ~kImplicitRowMark;
+    row.tag = f.tool_tags[k];
+    row.normal_impulse = force[fixed_planes + k] * dt;
+    row.depth = f.tool_depth[k];
+  }
+  // A grasper holds a particle once: its hold is found by particle and body.
+  for (physics::BodyAttachmentRow& r : state.body_attachments) {
+    if (r.particle < mesh.first_particle || r.particle >= mesh.first_particle + mesh.particle_count)
+      continue;
+    for (std::size_t k = 0; k < f.attachments.size(); ++k) {
+      const physics::MembraneAttachment& a = f.attachments[k];
+      if (a.vertex + mesh.first_particle == r.particle && a.body == r.body)
+        r.impulse = f.attachment_pull[k] * dt;
+    }
+  }
+  for (std::uint32_t b = 0; b < f.bodies.size(); ++b)
+    if (state.proxies[b].active()) state.proxies[b].impulse += f.force_on_body[b] * dt;
 }
 
 }  // namespace imasim::scene

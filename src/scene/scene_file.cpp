@@ -138,12 +138,31 @@ struct Reader {
                   "the heart's long axis must be non-zero and not parallel to its lateral axis");
     }
     check_budget();
+    check_fascia_solver();
     if (!params.heart_series.phase_files.empty()) {
       try {
         load_heart_series(params.heart_series);
       } catch (const MeshFileError& e) {
         cross_error({"heart.phase_files"}, e.what());
       }
+    }
+  }
+
+  // The implicit solver's law: read by it only (a key that changes nothing is refused), and
+  // stiffening, not softening, past the toe.
+  void check_fascia_solver() {
+    if (params.fascia_solver != kImplicitFasciaSolver) {
+      for (const char* key : {"fascia.linear_modulus_pa", "fascia.toe_strain"})
+        if (lines.count(key))
+          cross_error({key}, "read by the implicit fascia only: set fascia.solver = \"implicit\"");
+      return;
+    }
+    const Real toe = params.patch.fascia.object.membrane->youngs_modulus;
+    if (!(params.fascia_linear_modulus >= toe)) {
+      cross_error({"fascia.linear_modulus_pa", "fascia.youngs_modulus_pa"},
+                  "the linear region's modulus " + real_text(params.fascia_linear_modulus) +
+                      " is below the toe's (youngs_modulus_pa " + real_text(toe) +
+                      "): collagen stiffens as it is stretched");
     }
   }
 
@@ -475,6 +494,17 @@ ThoraxSceneParams load_scene_file(const std::string& path) {
   return parse_scene(file.text, path);
 }
 
+namespace {
+
+// The implicit fascia's law is read by it only (check_fascia_solver).
+bool key_is_read(const ThoraxSceneParams& params, std::string_view path) {
+  if (path == "fascia.linear_modulus_pa" || path == "fascia.toe_strain")
+    return params.fascia_solver == kImplicitFasciaSolver;
+  return true;
+}
+
+}  // namespace
+
 std::string print_scene(const ThoraxSceneParams& const_params) {
   ThoraxSceneParams params = const_params;  // the key accessors take a mutable reference
   std::ostringstream out;
@@ -483,6 +513,8 @@ std::string print_scene(const ThoraxSceneParams& const_params) {
     out << "\n[" << table << "]\n";
     for (const SceneKey& key : scene_keys()) {
       if (key.path.substr(0, table.size() + 1) != std::string(table) + ".") continue;
+      // A key its scene does not read is shown, commented out (given, it would be refused).
+      if (!key_is_read(params, key.path)) out << "# ";
       out << key.path.substr(table.size() + 1) << " = ";
       std::visit(
           [&](auto ref) {

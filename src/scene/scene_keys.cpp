@@ -26,6 +26,10 @@ constexpr double kDirection = 1e3;
 // heart.placement (scene/heart_placement.hpp).
 constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, kAutoPlacement};
 
+// fascia.solver (ThoraxSceneParams::fascia_solver).
+constexpr std::array<std::string_view, 2> kFasciaSolvers = {kXpbdFasciaSolver,
+                                                            kImplicitFasciaSolver};
+
 // Keys of the two strand sets differ only in the set they address.
 #define IMASIM_STRAND_KEYS(table, member)                                                         \
   SceneKey{table ".strands_per_face",                                                             \
@@ -221,6 +225,17 @@ const SceneKey kKeys[] = {
     {"fascia.youngs_modulus_pa",
      RealRef([](P& p) { return &p.patch.fascia.object.membrane->youngs_modulus; }), 1e3, 1e9,
      "E of the fascia in tension (superficial fascia: 2.65 MPa)"},
+    {"fascia.solver", ChoiceRef([](P& p) { return &p.fascia_solver; }), 0, 0,
+     "\"xpbd\": the fascia's rows in the step's sweeps at youngs_modulus_pa at every strain; "
+     "\"implicit\": a Newton solve of the step, youngs_modulus_pa in the toe and "
+     "linear_modulus_pa past toe_strain (docs/physics.md)",
+     kFasciaSolvers},
+    {"fascia.linear_modulus_pa", RealRef([](P& p) { return &p.fascia_linear_modulus; }), 1e3, 1e9,
+     "E of the fascia past its toe strain (superficial fascia's linear region: 2.65 MPa); "
+     "solver = \"implicit\" only"},
+    {"fascia.toe_strain", RealRef([](P& p) { return &p.fascia_toe_strain; }), 1e-3, 0.5,
+     "strain where the fascia's collagen is recruited (toe to linear region); solver = "
+     "\"implicit\" only"},
     {"fascia.thickness_m", RealRef([](P& p) { return &p.patch.fascia.object.membrane->thickness; }),
      1e-5, 0.01, "fascia thickness t (stretch stiffness E t)"},
     {"fascia.bending_stiffness_n_m",

@@ -113,6 +113,12 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   tissue::finish_tissue_step(w);
   scene.ports = params.ports;
   aim_ports(scene.ports, params.port_target);
+  if (params.fascia_solver == kImplicitFasciaSolver) {
+    const physics::MembraneMaterial& m = *params.patch.fascia.object.membrane;
+    // The masses are the particles' (eq. 5): the law's density is not read.
+    use_implicit_fascia(scene, {m.youngs_modulus, params.fascia_linear_modulus,
+                                params.fascia_toe_strain, m.thickness, Real(0)});
+  }
   return scene;
 }
 

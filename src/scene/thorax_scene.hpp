@@ -6,6 +6,8 @@
 // move the anchored boundary with it; engine step, XSPH, couplings; the heart as a collider;
 // surfaces, the fine vessel and the strand ends.
 #include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "physics/executor.hpp"
@@ -21,6 +23,9 @@
 #include "tissue/thoracic_patch.hpp"
 
 namespace imasim::scene {
+
+inline constexpr std::string_view kXpbdFasciaSolver = "xpbd";
+inline constexpr std::string_view kImplicitFasciaSolver = "implicit";
 
 struct ThoraxSceneParams {
   AnatomyParams anatomy;
@@ -38,6 +43,13 @@ struct ThoraxSceneParams {
   std::vector<Port> ports;          // camera, left and right instrument, assistant
   Vec3 port_target = Vec3::Zero();  // where the ports aim (unit: m)
   ConsoleSettings console = default_console_settings();  // forces, safety, devices
+  // The fascia's solver (docs/physics.md): "xpbd", its rows in the step's sweeps, at the toe's
+  // modulus (fascia.youngs_modulus_pa) at every strain; "implicit", Newton on the backward-Euler
+  // step (implicit_fascia_scene.hpp) with the strain-stiffening law: the toe's modulus at rest,
+  // the linear region's past the toe strain.
+  std::string fascia_solver = std::string(kXpbdFasciaSolver);
+  Real fascia_linear_modulus = Real(2.65e6);  // E past the toe strain (unit: Pa; implicit only)
+  Real fascia_toe_strain = Real(0.05);        // where the toe ends (implicit only)
   // What reading the scene file said that is not an error, "FILE:LINE: ..." (an old key read
   // under its new name); make_thorax_scene passes them on as setup notes.
   std::vector<std::string> file_notes;
@@ -64,7 +76,7 @@ struct ThoraxScene {
   // placement), for the user to read.
   std::vector<std::string> setup_notes;
   // The fascia solved by the implicit membrane step instead of its XPBD rows
-  // (use_implicit_fascia; tissue-only runs), or XPBD when empty.
+  // (fascia_solver "implicit", or use_implicit_fascia), or XPBD when empty.
   std::optional<SceneImplicitFascia> implicit_fascia;
 };
 

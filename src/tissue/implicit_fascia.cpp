@@ -33,19 +33,19 @@ ImplicitFascia make_implicit_fascia(const TissueWorld& world, std::uint32_t mesh
   return fascia;
 }
 
-physics::ImplicitStepReport step_implicit_fascia(ImplicitFascia& fascia, TissueWorld& world,
-                                                 const Vec3& gravity,
-                                                 std::span<const physics::MembraneContact> contacts,
-                                                 std::span<physics::MembraneBody> bodies,
-                                                 const physics::ImplicitSolveParams& params) {
+physics::ImplicitStepReport step_implicit_fascia(
+    ImplicitFascia& fascia, TissueWorld& world, const Vec3& gravity,
+    std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
+    const physics::ImplicitSolveParams& params,
+    std::span<const physics::MembraneAttachment> attachments) {
   const MeshObject& object = world.meshes[fascia.mesh];
   physics::Particles& particles = world.state.particles;
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
     fascia.x[k] = particles.position[object.first_particle + k];
     fascia.v[k] = particles.velocity[object.first_particle + k];
   }
-  const physics::ImplicitStepReport report =
-      fascia.membrane->step(fascia.x, fascia.v, {gravity, {}, contacts, bodies}, params);
+  const physics::ImplicitStepReport report = fascia.membrane->step(
+      fascia.x, fascia.v, {gravity, {}, contacts, bodies, attachments}, params);
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
     const std::uint32_t p = object.first_particle + k;
     if (particles.inverse_mass[p] == 0) continue;

@@ -4,7 +4,7 @@
 // masses its particles have (eq. 5), its fixed particles fixed, its edges the strain-stiffening
 // springs of `material` (the toe's modulus, the linear region's past the toe strain), its
 // interior edges hinges of the bending stiffness D. The first piece of issue 41's fascia at its
-// real stiffness: the scene's step does not call it yet (docs/physics.md).
+// real stiffness (scene/implicit_fascia_scene.hpp steps it in the thorax scene).
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -31,11 +31,11 @@ ImplicitFascia make_implicit_fascia(const TissueWorld& world, std::uint32_t mesh
 
 // One step of the fascia alone: reads its particles' positions and velocities (the fixed ones'
 // positions are where the caller put them for the step's end), solves, and writes the free ones
-// back. Contacts name mesh-local vertices.
-physics::ImplicitStepReport step_implicit_fascia(ImplicitFascia& fascia, TissueWorld& world,
-                                                 const Vec3& gravity,
-                                                 std::span<const physics::MembraneContact> contacts,
-                                                 std::span<physics::MembraneBody> bodies,
-                                                 const physics::ImplicitSolveParams& params);
+// back. Contacts and attachments name mesh-local vertices.
+physics::ImplicitStepReport step_implicit_fascia(
+    ImplicitFascia& fascia, TissueWorld& world, const Vec3& gravity,
+    std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
+    const physics::ImplicitSolveParams& params,
+    std::span<const physics::MembraneAttachment> attachments = {});
 
 }  // namespace imasim::tissue
