@@ -159,6 +159,27 @@ TEST(ImplicitFasciaScene, ACutOpensAsTheXpbdFasciasDoes) {
   EXPECT_NEAR(implicit, xpbd, 0.05 * xpbd);
 }
 
+// The scene file's law reaches the solver: fascia.solver = "implicit" builds it from
+// youngs_modulus_pa in the toe, linear_modulus_pa past toe_strain; each key changes its springs.
+TEST(ImplicitFasciaScene, TheScenesLawReachesTheSolversSprings) {
+  ThoraxSceneParams params = default_thorax_scene_params();
+  params.fascia_solver = std::string(kImplicitFasciaSolver);
+  params.fascia_linear_modulus = Real(1e6);
+  params.fascia_toe_strain = Real(0.08);
+  const ThoraxScene s = make_thorax_scene(params);
+  ASSERT_TRUE(s.implicit_fascia.has_value());
+  const physics::StiffeningMembrane& law = s.implicit_fascia->material;
+  EXPECT_EQ(law.toe_modulus, params.patch.fascia.object.membrane->youngs_modulus);
+  EXPECT_EQ(law.linear_modulus, Real(1e6));
+  EXPECT_EQ(law.toe_strain, Real(0.08));
+  const physics::MembraneEdge& edge = s.implicit_fascia->fascia.membrane->edges().front();
+  EXPECT_EQ(edge.spring.toe_strain, Real(0.08));
+  // k_e = E t sum A / |e|^2 for both regimes: their ratio is the moduli's.
+  EXPECT_NEAR(edge.spring.linear_stiffness / edge.spring.toe_stiffness,
+              1e6 / double(law.toe_modulus), 1e-9);
+  EXPECT_FALSE(make_thorax_scene(default_thorax_scene_params()).implicit_fascia.has_value());
+}
+
 // The fascia's largest sag after 1 s at rest (still heart), at the toe's modulus throughout; with
 // every vertex coagulated (stiffness times `factor`) when factor > 1.
 double sag_after_coagulation(Real factor) {
