@@ -70,6 +70,26 @@ TEST(BodyAttachment, AWeightHangingFromTheProxySinksItUntilTheSpringCarriesIt) {
               -weight * (kCompliance + h / kDamping), 1e-3 * weight * kCompliance);
 }
 
+TEST(BodyAttachment, AKinematicParticleThatHoldsTheBodyKeepsItAtTheHold) {
+  // A kinematic particle (the implicit fascia held still while the XPBD step runs): idle without
+  // holds_body; with it, the body is drawn back to the hold, 2 mm against its spring, and the
+  // particle stays.
+  BodyAttachmentRow row{0, 0, Vec3(0, 0.002, 0), 0, Vec3::Zero(), Vec3::Zero()};
+  ProxyBody body;
+  body.stiffness = kStiffness;
+  body.damping = kDamping;
+  Vec3 x = Vec3::Zero();
+  const Real w = 0, h = 1e-4;
+  project_body_attachment(row, &x, &w, body, h);
+  EXPECT_EQ(body.offset, Vec3::Zero());
+  row.holds_body = true;
+  project_body_attachment(row, &x, &w, body, h);
+  EXPECT_EQ(x, Vec3::Zero());
+  EXPECT_NEAR(body.offset.y(), -0.002, 1e-15);  // the target on the particle: rigid, all at once
+  EXPECT_NEAR(row.impulse.y(), -kDamping * 0.002, 1e-15);
+  EXPECT_EQ(body.impulse, row.impulse);
+}
+
 TEST(BodyAttachment, AHoldNamingAMissingParticleOrBodyIsReported) {
   Rig rig;
   rig.state.body_attachments.push_back(

@@ -247,5 +247,30 @@ TEST(Contact, StaticFrictionAgainstAProxyBodyHoldsAcrossASecondProjection) {
   EXPECT_GT((body.offset - body_before).x(), 0);  // and the body was dragged its share
 }
 
+// A kinematic particle (the implicit fascia while the XPBD step runs, held still there) is an
+// obstacle for a proxy body when its row says so: the body takes the whole correction and the
+// particle stays; without the flag the row is idle, as for any kinematic particle.
+TEST(Contact, AKinematicParticleThatStopsTheBodyPushesItOutWhole) {
+  ContactRow c = row_on_plane(0, 0);
+  c.body = 0;
+  ProxyBody body;
+  body.stiffness = 500;
+  body.damping = 2;
+  const Vec3 x_start = Vec3::Zero();
+  const Real h = 1e-4, w = 0;
+  Vec3 x(0, -1e-3, 0);  // 1 mm inside the tool's surface
+  project_contact(c, &x, &x_start, &w, body, Vec3::Zero(), 0, 1, h);
+  EXPECT_EQ(body.offset, Vec3::Zero());  // idle
+  c.stops_body = true;
+  project_contact(c, &x, &x_start, &w, body, Vec3::Zero(), 0, 1, h);
+  EXPECT_EQ(x, Vec3(0, -1e-3, 0));
+  EXPECT_NEAR(body.offset.y(), -1e-3, 1e-15);  // the surface moved out by the whole gap
+  EXPECT_NEAR(body.impulse.y(), -body.damping * 1e-3, 1e-15);
+  EXPECT_NEAR(c.depth, 1e-3, 1e-15);
+  const Vec3 after = body.offset;
+  project_contact(c, &x, &x_start, &w, body, Vec3::Zero(), 0, 1, h);
+  EXPECT_EQ(body.offset, after);  // touching, not inside: nothing more
+}
+
 }  // namespace
 }  // namespace imasim::physics

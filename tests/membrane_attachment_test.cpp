@@ -48,6 +48,37 @@ TEST(MembraneAttachment, AHeldVertexPullsTheToolsBodyDownByItsWeight) {
   EXPECT_NEAR(v[0].norm(), 0, 1e-6);
 }
 
+// The tool's body pressed on a surface (the chest wall) by its coupling: its device 2 mm beyond
+// the plane, the body stops on it, 2 N over the stop's 1e7 N/m (0.2 um inside), and the vertex it
+// holds stays on the hold's target, which rides with the body.
+TEST(MembraneAttachment, ABodyStoppedByASurfaceStaysOnItWithWhatItHolds) {
+  ImplicitMembrane point({kMass}, {0}, {}, 0.005, {}, 1);
+  const Vec3 target(0, 0.001, 0);
+  std::vector<Vec3> x = {target}, v = {Vec3::Zero()};
+  // The device 2 mm below the stop's plane y = 0 (out of the surface: +y).
+  std::vector<MembraneBody> body = {{Vec3(0, -0.002, 0), 1000, 5, Vec3::Zero()}};
+  const ImplicitSolveParams solve;
+  for (int step = 0; step < 200; ++step) {
+    const Vec3 start = body[0].position;
+    const std::vector<MembraneAttachment> hold = {{0, target + start, 0, 1e6}};
+    const std::vector<MembraneBodyStop> stop = {{0, Vec3::UnitY(), start.y()}};
+    ImplicitLoads loads{Vec3::Zero(), {}, {}, body, hold};
+    loads.body_stops = stop;
+    ASSERT_TRUE(point.step(x, v, loads, solve).ok);
+  }
+  const double push = 1000 * 0.002;  // the spring's, k |o - anchor| with o on the plane
+  EXPECT_NEAR(body[0].position.y(), -push / solve.body_stop_stiffness, 1e-9);
+  EXPECT_NEAR((x[0] - (target + body[0].position)).norm(), 0, 1e-12);
+  // Without the stop the body reaches its device.
+  std::vector<MembraneBody> free_body = {{Vec3(0, -0.002, 0), 1000, 5, Vec3::Zero()}};
+  x = {target};
+  for (int step = 0; step < 200; ++step) {
+    const std::vector<MembraneAttachment> hold = {{0, target + free_body[0].position, 0, 1e6}};
+    ASSERT_TRUE(point.step(x, v, {Vec3::Zero(), {}, {}, free_body, hold}, solve).ok);
+  }
+  EXPECT_NEAR(free_body[0].position.y(), -0.002, 1e-6);
+}
+
 TEST(MembraneAttachment, RefusesAnAttachmentOutOfRangeOrWithoutStiffness) {
   ImplicitMembrane point({kMass}, {0}, {}, 0.005);
   std::vector<Vec3> x = {Vec3::Zero()}, v = {Vec3::Zero()};
@@ -59,6 +90,8 @@ TEST(MembraneAttachment, RefusesAnAttachmentOutOfRangeOrWithoutStiffness) {
     const std::vector<MembraneAttachment> holds = {bad};
     EXPECT_THROW(point.step(x, v, {kGravity, {}, {}, {}, holds}, solve), std::invalid_argument);
   }
+  const std::vector<MembraneBodyStop> stop = {{0, Vec3::UnitY(), 0}};  // no body to stop
+  EXPECT_THROW(point.step(x, v, {kGravity, {}, {}, {}, {}, stop}, solve), std::invalid_argument);
 }
 
 }  // namespace

@@ -551,6 +551,11 @@ int run_run_command(const RunOptions& o) {
   if (scene.implicit_fascia) {
     out["fascia_unsolved_steps"] = scene.implicit_fascia->unsolved_steps;
     out["fascia_largest_residual_n"] = scene.implicit_fascia->largest_residual;
+    const scene::SceneImplicitFascia& f = *scene.implicit_fascia;
+    const double fascia_steps = double(std::max<std::uint64_t>(f.steps, 1));
+    out["fascia_newton_iterations_per_step"] = double(f.iterations) / fascia_steps;
+    out["fascia_factorizations_per_step"] = double(f.factorizations) / fascia_steps;
+    out["fascia_refits"] = f.refits;
   }
   out["ms_per_step_median"] = median_ms;
   out["profile_ms_per_step"] = profile_report(profile);  // mean per stage

@@ -22,16 +22,20 @@ struct BodyAttachmentRow {
   Vec3 lambda = Vec3::Zero();  // this substep's multipliers, one per axis (unit: N s^2)
   // The impulse the hold put on the body over the step (unit: N s; / dt gives the mean pull).
   Vec3 impulse = Vec3::Zero();
+  // A kinematic particle is left alone, unless this is set: then it holds the body, which takes
+  // the whole correction (the implicit fascia, solved before the XPBD step and held still in it).
+  bool holds_body = false;
 };
 
 // XPBD on the three linear rows at once, in a substep of length h: alpha~ = alpha / h^2,
 // d_lambda = (-C - alpha~ lambda) / (w_p + w_b + alpha~); the particle moves by w_p d_lambda, the
-// body by -w_b d_lambda (the target moves with it). A fixed particle is left alone.
+// body by -w_b d_lambda (the target moves with it). A fixed particle is left alone, or holds the
+// body (holds_body).
 inline void project_body_attachment(BodyAttachmentRow& r, Vec3* p, const Real* w, ProxyBody& body,
                                     Real h) {
   const Real wp = w[r.particle];
-  if (wp == 0) return;
   const Real wb = proxy_inverse_mass(body, h);
+  if (wp == 0 && !(r.holds_body && wb > 0)) return;
   const Real alpha = r.compliance / (h * h);
   const Vec3 c = p[r.particle] - (r.target + body.carried());
   const Vec3 dl = (-c - alpha * r.lambda) / (wp + wb + alpha);

@@ -29,6 +29,10 @@ struct ContactRow {
   Real margin = 0;             // kept between surface and particle (unit: m)
   Real static_friction = 0, kinetic_friction = 0;  // mu_s, mu_k
   std::uint32_t body = kNoBody;  // the proxy body the surface belongs to, or none (kinematic)
+  // A row on a body whose particle is kinematic for this step is idle, unless this is set: then
+  // the particle is an obstacle and the body takes the whole correction (the implicit fascia,
+  // solved before the XPBD step and held still in it, stops the instruments there).
+  bool stops_body = false;
   // Results of the step: the deepest penetration corrected in its last substep and the normal
   // impulse over the step (sum of m dn / h; / dt gives the mean force).
   Real depth = 0;  // (unit: m)
@@ -118,13 +122,20 @@ inline void project_contact(ContactRow& c, Vec3* p, const Vec3* x_start, const R
                             ProxyBody& body, const Vec3& body_start, Real tau0, Real tau1, Real h,
                             Real allowance = 0) {
   const Real wi = w[c.particle];
-  if (wi == 0) return;
   const Real wb = proxy_inverse_mass(body, h);
+  if (wi == 0 && !(c.stops_body && wb > 0)) return;
   Vec3& x = p[c.particle];
   const Vec3 motion = c.point1 - c.point0;
   const Vec3 q = c.point0 + tau1 * motion + body.carried();
   const Real gap = c.normal.dot(x - q) - c.margin + allowance;
   if (!(gap < 0)) return;
+  if (wi == 0) {  // an obstacle: the body moves out of it, frictionless
+    const Vec3 pushed = gap * c.normal;
+    body.offset += pushed;
+    body.impulse += body.damping * pushed;
+    c.depth = -gap > c.depth ? -gap : c.depth;
+    return;
+  }
   const Real share = wi / (wi + wb);  // the particle's part of each correction
   const Real dn = -gap;               // the whole normal correction
   x += (share * dn) * c.normal;

@@ -159,6 +159,10 @@ Real ImplicitMembrane::gap(const MembraneContact& c, std::span<const Vec3> x,
   return c.normal.dot(x[c.vertex] - point);
 }
 
+Real ImplicitMembrane::body_stop_gap(const MembraneBodyStop& r, std::span<const Vec3> bx) const {
+  return r.gap0 + r.normal.dot(bx[r.body] - body_start_[r.body]);
+}
+
 Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> bx,
                                 const ImplicitLoads& loads, Real contact_k, Dense& gradient) const {
   const std::span<const Vec3> force = loads.force;
@@ -213,6 +217,12 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
     const Vec3 push = contact_k * g * c.normal;  // d/dx of k/2 g^2 (unit: N)
     if (a != kFixed) gradient.segment<3>(3 * a) += push;
     if (c.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + c.body)) -= push;
+  }
+  for (const MembraneBodyStop& r : loads.body_stops) {
+    const Real g = body_stop_gap(r, bx);
+    if (g >= 0) continue;
+    phi += Real(0.5) * body_stop_k_ * g * g;
+    gradient.segment<3>(3 * (free_rows + r.body)) += body_stop_k_ * g * r.normal;
   }
   for (const MembraneAttachment& h : loads.attachments) {
     Vec3 target = h.target;
@@ -270,6 +280,9 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
     if (a == kFixed) continue;
     add(body_vertex_[c.body][a], k, -1);
   }
+  for (const MembraneBodyStop& r : loads.body_stops)
+    if (body_stop_gap(r, bx) < 0)
+      add(body_diagonal_[r.body], body_stop_k_ * r.normal * r.normal.transpose(), 1);
   for (const MembraneAttachment& h : loads.attachments) {
     const Mat3 k = h.stiffness * Mat3::Identity();
     const std::uint32_t a = free_index_[h.vertex];
@@ -374,6 +387,11 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       throw std::invalid_argument("implicit membrane: attachment " + std::to_string(k) +
                                   " names a vertex or a body out of range, or has no stiffness");
   }
+  for (std::size_t k = 0; k < loads.body_stops.size(); ++k)
+    if (loads.body_stops[k].body >= body_count_)
+      throw std::invalid_argument("implicit membrane: body stop " + std::to_string(k) +
+                                  " names a body out of range");
+  body_stop_k_ = params.body_stop_stiffness;
   for (std::uint32_t b = 0; b < body_count_; ++b) {
     const MembraneBody& body = loads.bodies[b];
     if (!(body.stiffness >= 0) || !(body.damping >= 0) || !(body.stiffness + body.damping > 0))

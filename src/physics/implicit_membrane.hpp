@@ -107,6 +107,16 @@ inline Vec3 attachment_pull(const MembraneAttachment& a, const Vec3& x,
   return a.stiffness * (x - a.target - moved);
 }
 
+// A body stopped by a fixed surface (a tool's proxy at the heart or the chest wall: the body stop
+// of physics/body_stop.hpp): a point of the body kept on the plane's outer side, gap = gap0 +
+// n . (o - o_start), by a stiff one-sided spring, energy k/2 min(0, gap)^2. Without it the
+// membrane's step would carry a pressed tool into the surface, and the tissue it holds with it.
+struct MembraneBodyStop {
+  std::uint32_t body = 0;
+  Vec3 normal = Vec3::UnitY();  // unit, out of the surface
+  Real gap0 = 0;                // the gap with the body where the step starts (unit: m)
+};
+
 // What acts on the membrane during one step besides its springs.
 struct ImplicitLoads {
   Vec3 gravity = Vec3::Zero();                // (unit: m/s^2)
@@ -114,6 +124,7 @@ struct ImplicitLoads {
   std::span<const MembraneContact> contacts;  // any number, a vertex in several
   std::span<MembraneBody> bodies;             // as many as the solver was made for
   std::span<const MembraneAttachment> attachments = {};
+  std::span<const MembraneBodyStop> body_stops = {};
 };
 
 struct ImplicitSolveParams {
@@ -127,6 +138,9 @@ struct ImplicitSolveParams {
   Real kept_matrix_ratio = Real(0.25);
   // The contacts' penalty (unit: N/m): a vertex pressed with 0.1 N stays 1 um inside.
   Real contact_stiffness = Real(1e5);
+  // The body stops' penalty (unit: N/m): a tool pressed on the chest wall with 3 N stays 0.3 um
+  // inside, which the XPBD step's hard stop takes out without moving the tissue the tool holds.
+  Real body_stop_stiffness = Real(1e7);
   // A vertex the step's first iterate finds within this of a fixed plane starts on it, held: the
   // membrane that rested on the plane at the last step's end (unit: m).
   Real hold_distance = Real(1e-6);
@@ -194,6 +208,7 @@ class ImplicitMembrane {
   // exact: compressed edges' negative tension term kept (may fail: not positive definite).
   bool factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
                       Real contact_k, bool exact);
+  Real body_stop_gap(const MembraneBodyStop& r, std::span<const Vec3> bx) const;
   // A contact's gap at x (with its body at bx), and its body's row or kFixed.
   Real gap(const MembraneContact& c, std::span<const Vec3> x, std::span<const Vec3> bx) const;
   // The held rows' normal taken out of the matrix (S H S + (m / h^2) n n^T, S = I - n n^T), so
@@ -216,6 +231,7 @@ class ImplicitMembrane {
   std::vector<EdgeBlocks> blocks_;
   std::vector<MembraneHinge> hinges_;
   std::uint32_t body_count_ = 0;
+  Real body_stop_k_ = 0;  // this step's ImplicitSolveParams::body_stop_stiffness (unit: N/m)
   // Per body: its diagonal block, and its block with every free vertex: a contact may join it to
   // any.
   std::vector<Block> body_diagonal_;

@@ -90,12 +90,21 @@ void gather_instruments(tissue::TissueWorld& w, SceneImplicitFascia& f, std::uin
     const auto index = static_cast<std::uint32_t>(f.tool_tags.size());
     f.tool_tags.push_back(c.tag);
     c.tag = kImplicitRowMark | index;
+    c.stops_body = true;
   }
   f.attachments.clear();
-  for (const physics::BodyAttachmentRow& r : w.state.body_attachments) {
+  for (physics::BodyAttachmentRow& r : w.state.body_attachments) {
     if (r.particle < first || r.particle >= end || !moves_proxy(proxies, r.body)) continue;
     const Real k = r.compliance > 0 ? 1 / r.compliance : kRigidHoldStiffness;
     f.attachments.push_back({r.particle - first, r.target, r.body, k});
+    r.holds_body = true;
+  }
+  // The surfaces that stop the proxies, as the XPBD step will find them at its end (the body
+  // where it starts: the offset not yet carried).
+  f.body_stops.clear();
+  for (const physics::BodyStopRow& r : w.state.body_stops) {
+    if (!moves_proxy(proxies, r.body)) continue;
+    f.body_stops.push_back({r.body, r.normal, r.normal.dot(r.point1 - r.surface1) - r.margin});
   }
 }
 
@@ -179,6 +188,7 @@ void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& 
   f.tool_depth.reserve(w.state.contacts.rows.capacity());
   f.attachments.reserve(mesh.particle_capacity);
   f.attachment_pull.reserve(mesh.particle_capacity);
+  f.body_stops.reserve(w.state.body_stops.capacity());
   f.inverse_mass.reserve(mesh.particle_capacity);
   f.velocity.reserve(mesh.particle_capacity);
   f.coagulated.reserve(mesh.particle_capacity);
@@ -190,6 +200,7 @@ void refit_scene_fascia(ThoraxScene& scene) {
   tissue::TissueWorld& w = scene.patch.world;
   remove_fascia_rows(w, w.meshes[scene.patch.fascia]);
   build_fascia_solver(scene, *scene.implicit_fascia);
+  ++scene.implicit_fascia->refits;
 }
 
 void coagulate_scene_fascia(ThoraxScene& scene, std::span<const std::uint8_t> coagulated,
@@ -231,10 +242,13 @@ physics::StepResult step_scene_fascia(ThoraxScene& scene) {
   const std::size_t fixed_planes = f.contacts.size();
   gather_instruments(w, f, first, end);
   f.last = tissue::step_implicit_fascia(f.fascia, w, w.model.objects[mesh.object].gravity,
-                                        f.contacts, f.bodies, f.solve, f.attachments);
+                                        f.contacts, f.bodies, f.solve, f.attachments, f.body_stops);
   load_proxies(w, f, first, fixed_planes);
   damp_fascia(w, mesh);
   f.unsolved_steps += f.last.residual > f.solve.tolerance;
+  ++f.steps;
+  f.iterations += f.last.iterations;
+  f.factorizations += f.last.factorizations;
   f.largest_residual = std::max(f.largest_residual, f.last.residual);
   if (!f.last.ok) {
     result.status = physics::StepStatus::non_finite;
@@ -268,6 +282,7 @@ void release_scene_fascia(ThoraxScene& scene) {
     if (!(row.tag & kImplicitRowMark)) continue;
     const std::uint32_t k = row.tag & ~kImplicitRowMark;
     row.tag = f.tool_tags[k];
+    row.stops_body = false;
     row.normal_impulse = force[fixed_planes + k] * dt;
     row.depth = f.tool_depth[k];
   }
@@ -275,6 +290,7 @@ void release_scene_fascia(ThoraxScene& scene) {
   for (physics::BodyAttachmentRow& r : state.body_attachments) {
     if (r.particle < mesh.first_particle || r.particle >= mesh.first_particle + mesh.particle_count)
       continue;
+    r.holds_body = false;
     for (std::size_t k = 0; k < f.attachments.size(); ++k) {
       const physics::MembraneAttachment& a = f.attachments[k];
       if (a.vertex + mesh.first_particle == r.particle && a.body == r.body)

@@ -7,16 +7,20 @@
 //   margin) and leave the XPBD set;
 // - the instruments' proxies (physics/proxy_body.hpp) are bodies of the solve: their contact rows
 //   on the fascia become planes that ride on them, their grasp's holds on it stiff springs to
-//   them, each proxy on its coupling's spring and damper (eq. 17's virtual coupling);
+//   them, the surfaces that stop them (the heart, the chest wall: body stop rows) stiff one-sided
+//   springs on them, each proxy on its coupling's spring and damper (eq. 17's virtual coupling);
 // - the fascia is stepped; a proxy it pushed or pulled gets its spring's rest moved so that the
 //   XPBD step, in which the proxy meets the vessel and the fat, carries it where the implicit
 //   step left it (at rest, the fascia's force over k added to the spring): a block Gauss-Seidel
 //   coupling;
 // - its particles are held still (kinematic) while XPBD steps the vessel and the fat, which read
-//   it as a boundary (the strands' ends, the fascia -> fat coupling); the instruments' rows on it
-//   stay in the XPBD set, doing nothing there (their particle has no mass), and get the implicit
-//   step's impulse and depth after, as do the holds, so that every reader of the rows (the felt
-//   force, the contact events) sees the fascia as it saw XPBD's.
+//   it as a boundary (the strands' ends, the fascia -> fat coupling); the instruments' rows and
+//   holds on it stay in the XPBD set, where the still fascia is an obstacle the proxy cannot
+//   enter and a hold that keeps it (ContactRow::stops_body, BodyAttachmentRow::holds_body: the
+//   vessel and the fat cannot push the tool into the fascia, nor a stop take it away from what it
+//   holds, behind the implicit step's back), and get the implicit step's impulse and depth after,
+//   so that every reader of the rows (the felt force, the contact events) sees the fascia as it
+//   saw XPBD's.
 // Then the fascia's masses and the implicit step's velocities are given back.
 #include <cstdint>
 #include <span>
@@ -40,7 +44,9 @@ struct SceneImplicitFascia {
   // Steps whose Newton solve ran out of iterations above the tolerance (last.residual says by how
   // much): rare buckling of the slack fascia, counted so a run can report it.
   std::uint64_t unsolved_steps = 0;
-  Real largest_residual = 0;       // over every step so far (unit: N)
+  Real largest_residual = 0;  // over every step so far (unit: N)
+  // Over every step so far: Newton iterations, factorisations, solver rebuilds after a cut.
+  std::uint64_t steps = 0, iterations = 0, factorizations = 0, refits = 0;
   std::uint32_t built_bodies = 0;  // the proxies the solver was built for
   // Scratch, sized at set-up. The contacts: the fixed planes first, then the instruments' rows,
   // whose tags (marked while the XPBD step runs) are kept in tool_tags, in the same order.
@@ -48,10 +54,11 @@ struct SceneImplicitFascia {
   std::vector<std::uint32_t> tool_tags;
   std::vector<Real> tool_depth;  // how deep each tool row's vertex ended inside (unit: m)
   std::vector<physics::MembraneAttachment> attachments;
-  std::vector<Vec3> attachment_pull;          // on the body, each (unit: N)
-  std::vector<physics::MembraneBody> bodies;  // one per proxy
-  std::vector<Vec3> force_on_body;            // the fascia's push and pull on each (unit: N)
-  std::vector<std::uint8_t> touched;          // whether the fascia pushed or pulled each
+  std::vector<physics::MembraneBodyStop> body_stops;  // the proxies' at the heart and the wall
+  std::vector<Vec3> attachment_pull;                  // on the body, each (unit: N)
+  std::vector<physics::MembraneBody> bodies;          // one per proxy
+  std::vector<Vec3> force_on_body;    // the fascia's push and pull on each (unit: N)
+  std::vector<std::uint8_t> touched;  // whether the fascia pushed or pulled each
   // Coagulated tissue is stiffer (surgery/cautery.hpp): per mesh vertex, whether it is, and
   // per solver edge, whether its springs took the factor already (unit of the factor: 1).
   std::vector<std::uint8_t> coagulated, edge_stiffened;

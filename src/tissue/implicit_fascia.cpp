@@ -37,7 +37,8 @@ physics::ImplicitStepReport step_implicit_fascia(
     ImplicitFascia& fascia, TissueWorld& world, const Vec3& gravity,
     std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
     const physics::ImplicitSolveParams& params,
-    std::span<const physics::MembraneAttachment> attachments) {
+    std::span<const physics::MembraneAttachment> attachments,
+    std::span<const physics::MembraneBodyStop> body_stops) {
   const MeshObject& object = world.meshes[fascia.mesh];
   physics::Particles& particles = world.state.particles;
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
@@ -45,7 +46,7 @@ physics::ImplicitStepReport step_implicit_fascia(
     fascia.v[k] = particles.velocity[object.first_particle + k];
   }
   const physics::ImplicitStepReport report = fascia.membrane->step(
-      fascia.x, fascia.v, {gravity, {}, contacts, bodies, attachments}, params);
+      fascia.x, fascia.v, {gravity, {}, contacts, bodies, attachments, body_stops}, params);
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
     const std::uint32_t p = object.first_particle + k;
     if (particles.inverse_mass[p] == 0) continue;
