@@ -41,7 +41,7 @@ TEST(ImplicitFasciaSession, TheExampleSessionCutsWithTheToolsAndTheFasciaInOneSo
   EXPECT_LT(out["fascia_unsolved_steps"].get<double>(), 0.01 * steps);
   EXPECT_LT(out["fascia_largest_residual_n"].get<double>(), 0.05);
   EXPECT_GT(out["fascia_newton_iterations_per_step"].get<double>(), 1);
-  EXPECT_GE(out["fascia_factorizations_per_step"].get<double>(), 0);
+  EXPECT_GT(out["fascia_factorizations_per_step"].get<double>(), 0.5);  // measured 5.5
   EXPECT_GT(out["fascia_refits"].get<int>(), 0);  // every cut rebuilds the implicit step
 }
 
