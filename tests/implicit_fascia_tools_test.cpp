@@ -5,6 +5,9 @@
 // reads XPBD's. At rest the coupling carries what the fascia pushes or pulls with: k o = F.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "physics/executor.hpp"
 #include "scene/thorax_scene.hpp"
 #include "tissue/mesh_object.hpp"
@@ -134,6 +137,66 @@ TEST(ImplicitFasciaTools, AProxysContactPushesTheFasciaAndItsRowCarriesThePushBa
   EXPECT_GT((x - rig.start).dot(press), 0.001);
   EXPECT_NEAR((kCoupling * body.offset + push * press).norm(), 0, 0.02 * push);
   EXPECT_NEAR((body.impulse / dt + push * press).norm(), 0, 0.02 * push);
+}
+
+// The tool's surface pressing the vertex 3 mm towards the wall, as above, then drawn 1 mm along
+// the sheet over 0.5 s. With the tissue's friction (mu 0.2, pressed by the last step's push) the
+// vertex is dragged until the sheet's pull in its plane matches Coulomb's bound, and the surface
+// slides on under it: the tool's coupling is held back by mu times its push. Without friction the
+// surface slides under the vertex and nothing holds the tool back.
+struct Drag {
+  Real carried = 0;  // how far the vertex went along with the surface (unit: m)
+  Real drag = 0;     // the coupling's pull along the draw at the end, k o . t (unit: N)
+  Real push = 0;     // the row's push (unit: N)
+};
+
+Drag drag_along(Real mu) {
+  Rig rig = settled_rig();
+  tissue::TissueWorld& w = rig.scene.patch.world;
+  const Vec3 press = -rig.heartward;
+  const Vec3 along = press.unitOrthogonal();
+  const Vec3 surface = rig.start + Real(0.003) * press;
+  physics::Executor exec(1);
+  physics::StepProfile profile;
+  Vec3 pressed = Vec3::Zero();
+  for (int n = 0; n < 200; ++n) {
+    prepare_thorax_step(rig.scene, profile);
+    physics::ProxyBody& body = w.state.proxies[0];
+    prepare_proxy(body);
+    const Real drawn0 = Real(0.001) * std::clamp(Real(n - 100) / 100, Real(0), Real(1));
+    const Real drawn1 = Real(0.001) * std::clamp(Real(n - 99) / 100, Real(0), Real(1));
+    physics::ContactRow row;
+    row.particle = rig.particle;
+    row.tag = 16;
+    row.point0 = surface + drawn0 * along + body.offset;
+    row.point1 = surface + drawn1 * along + body.offset;
+    row.normal = press;
+    row.body = 0;
+    row.static_friction = row.kinetic_friction = mu;
+    w.state.contacts.rows.push_back(row);
+    EXPECT_TRUE(finish_thorax_step(rig.scene, exec).ok()) << "step " << n;
+    if (n == 99) pressed = w.state.particles.position[rig.particle];
+  }
+  Drag out;
+  out.carried = (w.state.particles.position[rig.particle] - pressed).dot(along);
+  out.drag = kCoupling * w.state.proxies[0].offset.dot(along);
+  for (const physics::ContactRow& c : w.state.contacts.rows)
+    if (c.tag == 16) out.push = c.normal_impulse / w.model.solver.dt;
+  EXPECT_LT(rig.scene.implicit_fascia->last.residual, 1e-4);
+  return out;
+}
+
+TEST(ImplicitFasciaTools, AProxysContactDragsTheFasciaAlongByItsFriction) {
+  const Drag rubbed = drag_along(0.2);
+  const Drag slid = drag_along(0);
+  // Dragged a little: a vertex of the taut sheet resists in its plane by its edges' axial
+  // stiffness (measured 56 um, the push 0.062 N).
+  EXPECT_GT(rubbed.carried, 2e-5);
+  EXPECT_LT(std::abs(slid.carried), 1e-9);
+  // Sliding, the tool is held back by Coulomb's mu times its push (measured to 0.01 %).
+  EXPECT_GT(rubbed.push, 0.01);
+  EXPECT_NEAR(-rubbed.drag, 0.2 * rubbed.push, 0.02 * 0.2 * rubbed.push);
+  EXPECT_LT(std::abs(slid.drag), 1e-9);
 }
 
 // The jaws drawing the fascia towards the heart, their proxy stopped 4.5 mm short of the device by

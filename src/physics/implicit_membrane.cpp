@@ -38,6 +38,17 @@ Vec3 hinge_curvature(const MembraneHinge& hinge, std::span<const Vec3> x) {
 
 }  // namespace
 
+FrictionTerms friction_potential(Real mu_lambda, Real slip, Real stick_slip) {
+  const Real eps = stick_slip;
+  if (slip >= eps)  // sliding: Coulomb's bound, mu lambda against the slip
+    return {mu_lambda * slip, mu_lambda / slip, 0};
+  // Sticking: f0 = -s^3 / (3 eps^2) + s^2 / eps + eps / 3, f0' = 2 s / eps - s^2 / eps^2,
+  // f0'' = 2 / eps - 2 s / eps^2; f0'(s) / s = 2 / eps - s / eps^2 stays finite at s = 0.
+  const Real s = slip, inverse = 1 / eps;
+  return {mu_lambda * (s * s * inverse * (1 - s * inverse / 3) + eps / 3),
+          mu_lambda * inverse * (2 - s * inverse), mu_lambda * 2 * inverse * (1 - s * inverse)};
+}
+
 ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std::uint8_t>& fixed,
                                    std::vector<MembraneEdge> edges, Real h,
                                    std::vector<MembraneHinge> hinges, std::uint32_t bodies)
@@ -159,6 +170,17 @@ Real ImplicitMembrane::gap(const MembraneContact& c, std::span<const Vec3> x,
   return c.normal.dot(x[c.vertex] - point);
 }
 
+Vec3 ImplicitMembrane::slip(const MembraneContact& c, std::span<const Vec3> x,
+                            std::span<const Vec3> bx) const {
+  Vec3 relative = x[c.vertex] - x0_[c.vertex] - c.motion;
+  if (c.body != kNoMembraneBody) relative -= bx[c.body] - body_start_[c.body];
+  return relative - c.normal.dot(relative) * c.normal;
+}
+
+bool ImplicitMembrane::rubs(const MembraneContact& c) const {
+  return c.friction > 0 && c.normal_force > 0 && free_index_[c.vertex] != kFixed;
+}
+
 Real ImplicitMembrane::body_stop_gap(const MembraneBodyStop& r, std::span<const Vec3> bx) const {
   return r.gap0 + r.normal.dot(bx[r.body] - body_start_[r.body]);
 }
@@ -217,6 +239,15 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
     const Vec3 push = contact_k * g * c.normal;  // d/dx of k/2 g^2 (unit: N)
     if (a != kFixed) gradient.segment<3>(3 * a) += push;
     if (c.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + c.body)) -= push;
+  }
+  for (const MembraneContact& c : loads.contacts) {  // friction, held rows too
+    if (!rubs(c)) continue;
+    const Vec3 u = slip(c, x, bx);
+    const FrictionTerms f = friction_potential(c.friction * c.normal_force, u.norm(), stick_slip_);
+    phi += f.energy;
+    const Vec3 rub = f.per_slip * u;  // d/dx of mu lambda f0(|u|) (unit: N)
+    gradient.segment<3>(3 * free_index_[c.vertex]) += rub;
+    if (c.body != kNoMembraneBody) gradient.segment<3>(3 * (free_rows + c.body)) -= rub;
   }
   for (const MembraneBodyStop& r : loads.body_stops) {
     const Real g = body_stop_gap(r, bx);
@@ -278,6 +309,23 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
     if (c.body == kNoMembraneBody) continue;
     add(body_diagonal_[c.body], k, 1);
     if (a == kFixed) continue;
+    add(body_vertex_[c.body][a], k, -1);
+  }
+  for (const MembraneContact& c : loads.contacts) {
+    if (!rubs(c)) continue;
+    const Vec3 u = slip(c, x, bx);
+    const Real size = u.norm();
+    const FrictionTerms f = friction_potential(c.friction * c.normal_force, size, stick_slip_);
+    // per_slip across the slip in the plane, along_slip along it (at no slip, per_slip in both).
+    Mat3 k = f.per_slip * (Mat3::Identity() - c.normal * c.normal.transpose());
+    if (size > 0) {
+      const Vec3 along = u / size;
+      k += (f.along_slip - f.per_slip) * along * along.transpose();
+    }
+    const std::uint32_t a = free_index_[c.vertex];
+    add(diagonal_[a], k, 1);
+    if (c.body == kNoMembraneBody) continue;
+    add(body_diagonal_[c.body], k, 1);
     add(body_vertex_[c.body][a], k, -1);
   }
   for (const MembraneBodyStop& r : loads.body_stops)
@@ -392,6 +440,17 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       throw std::invalid_argument("implicit membrane: body stop " + std::to_string(k) +
                                   " names a body out of range");
   body_stop_k_ = params.body_stop_stiffness;
+  stick_slip_ = params.stick_slip;
+  for (std::size_t k = 0; k < loads.contacts.size(); ++k) {
+    const MembraneContact& c = loads.contacts[k];
+    if (!(c.friction >= 0) || !(c.normal_force >= 0) || !c.motion.allFinite())
+      throw std::invalid_argument("implicit membrane: contact " + std::to_string(k) +
+                                  ": friction and normal force must not be negative, the motion "
+                                  "finite");
+    if (c.friction > 0 && c.normal_force > 0 && !(stick_slip_ > 0))
+      throw std::invalid_argument(
+          "implicit membrane: friction needs a positive stick-slip distance");
+  }
   for (std::uint32_t b = 0; b < body_count_; ++b) {
     const MembraneBody& body = loads.bodies[b];
     if (!(body.stiffness >= 0) || !(body.damping >= 0) || !(body.stiffness + body.damping > 0))
@@ -514,8 +573,15 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
   for (std::uint32_t b = 0; b < body_count_; ++b)
     loads.bodies[b].position = body_x_[b];
   contact_forces_.resize(loads.contacts.size());
+  contact_frictions_.resize(loads.contacts.size());
   for (std::uint32_t k = 0; k < loads.contacts.size(); ++k) {
     const MembraneContact& c = loads.contacts[k];
+    contact_frictions_[k] = Vec3::Zero();
+    if (rubs(c)) {
+      const Vec3 u = slip(c, x, body_x_);
+      contact_frictions_[k] =
+          -friction_potential(c.friction * c.normal_force, u.norm(), stick_slip_).per_slip * u;
+    }
     const std::uint32_t a = free_index_[c.vertex];
     if (a != kFixed && held_[a] == k) {
       contact_forces_[k] = std::max(Real(0), c.normal.dot(gradient_.segment<3>(3 * a)));

@@ -2,9 +2,11 @@
 // An implicit step for a small membrane (the fascia: about 500 vertices) whose edges are
 // strain-stiffening springs (stiffening_spring.hpp). One backward-Euler step minimises the
 // incremental potential
-//   Phi(x) = 1/(2 h^2) |x - y|_M^2 + sum_e E_e(|x_i - x_j|) + sum_k E_k(x) + sum_c E_c(x) - f . x,
+//   Phi(x) = 1/(2 h^2) |x - y|_M^2 + sum_e E_e(|x_i - x_j|) + sum_k E_k(x) + sum_c E_c(x)
+//            + sum_c D_c(x) - f . x,
 // y = x0 + h v0 + h^2 g, E_k the hinges' bending (MembraneHinge), E_c the penalties of the
 // contacts on tools' bodies (MembraneContact; fixed planes hold their vertices exactly instead),
+// D_c the contacts' friction (friction_potential),
 // by Newton's method: the Hessian (M / h^2 plus, per edge, the regime's stiffness along the edge
 // and the tension's T / l across it) is factored by sparse Cholesky of 3 x 3 blocks
 // (block_cholesky.hpp; the pattern analysed once at set-up), and each iteration backtracks along
@@ -75,12 +77,33 @@ struct MembraneBody {
 //   a moving surface (the fascia on the beating heart) reaches the planes one by one, and the
 //   Newton solve, whose line search stops at the first vertex to cross, took 15-20 iterations a
 //   step; holding every crossing vertex at once takes 2-3.
+// - Friction, on either kind: smoothed Coulomb friction against the vertex's slip over the step
+//   relative to the surface (friction_potential below), pressed with the normal force of the
+//   caller's last step (lagged: the normal force is known only once a step is solved).
 struct MembraneContact {
   std::uint32_t vertex = 0;
   Vec3 point = Vec3::Zero();    // on the plane (unit: m)
   Vec3 normal = Vec3::UnitY();  // unit, out of the surface
   std::uint32_t body = kNoMembraneBody;
+  Vec3 motion = Vec3::Zero();  // the surface's own motion over the step at the point (unit: m)
+  Real friction = 0;           // mu (unit: 1)
+  Real normal_force = 0;       // lambda, from the last step; no friction while 0 (unit: N)
 };
+
+// Smoothed Coulomb friction over one step (the lagged, smoothed friction of Li et al. 2020, IPC):
+// a contact pressing with normal force lambda resists its vertex's tangential slip u over the step
+// (relative to the surface) with the potential mu lambda f0(|u|), where f0(s) = s at and past the
+// stick-slip distance eps and -s^3 / (3 eps^2) + s^2 / eps + eps / 3 below it. Its force,
+// mu lambda f0'(|u|) against u, is Coulomb's whole mu lambda once the slip reaches eps and a stiff
+// spring (2 mu lambda / eps at rest) below it: a vertex under a tangential load F < mu lambda
+// creeps by eps (1 - sqrt(1 - F / (mu lambda))) a step instead of sticking exactly. Every term of
+// its Hessian is positive semi-definite, so Newton takes it whole.
+struct FrictionTerms {
+  Real energy = 0;      // mu lambda f0(s) (unit: J)
+  Real per_slip = 0;    // mu lambda f0'(s) / s: the force is -per_slip u (unit: N/m)
+  Real along_slip = 0;  // mu lambda f0''(s): the stiffness along u (unit: N/m)
+};
+FrictionTerms friction_potential(Real mu_lambda, Real slip, Real stick_slip);
 
 // The normal force the contact's surface exerts on its vertex at x (unit: N); moved: how far the
 // contact's body moved in the step (o - o_start), zero for a fixed surface.
@@ -129,8 +152,9 @@ struct ImplicitLoads {
 
 struct ImplicitSolveParams {
   // Newton iterations a step at most: 1-2 in a tool's steady press, 15 in the first step of a
-  // flat membrane loaded across its plane, which resists by its mass alone until it sags.
-  std::uint32_t max_iterations = 20;
+  // flat membrane loaded across its plane, which resists by its mass alone until it sags, 20-40
+  // in the rare step where many held vertices change between sticking and sliding (friction).
+  std::uint32_t max_iterations = 40;
   // Stop when no free vertex's force imbalance exceeds this (unit: N).
   Real tolerance = Real(1e-6);
   // The factorisation is kept across iterations and steps while each iteration leaves at most
@@ -146,6 +170,10 @@ struct ImplicitSolveParams {
   Real hold_distance = Real(1e-6);
   // false: a fixed plane is a penalty too, as a body's is (the comparison in the tests).
   bool hold_fixed_planes = true;
+  // Friction's stick-slip distance eps (friction_potential): the slip over a step below which a
+  // contact's friction is a spring rather than Coulomb's mu lambda; a stuck vertex under half its
+  // bound creeps 0.29 eps a step (unit: m).
+  Real stick_slip = Real(1e-6);
 };
 
 struct ImplicitStepReport {
@@ -180,6 +208,9 @@ class ImplicitMembrane {
   // (unit: N): a held vertex's the plane's reaction (the force its other loads press it with), a
   // penalty's k |gap|.
   std::span<const Real> contact_forces() const { return contact_forces_; }
+  // The friction each contact exerted on its vertex at the step's end, in the same order (unit:
+  // N): along its plane; the contact's body, if it has one, took the opposite.
+  std::span<const Vec3> contact_frictions() const { return contact_frictions_; }
 
   // A cut: edge e pulls no more; hinge k bends no more.
   void remove_edge(std::size_t e);
@@ -211,6 +242,10 @@ class ImplicitMembrane {
   Real body_stop_gap(const MembraneBodyStop& r, std::span<const Vec3> bx) const;
   // A contact's gap at x (with its body at bx), and its body's row or kFixed.
   Real gap(const MembraneContact& c, std::span<const Vec3> x, std::span<const Vec3> bx) const;
+  // A contact's tangential slip over the step relative to its surface (and its body) at x.
+  Vec3 slip(const MembraneContact& c, std::span<const Vec3> x, std::span<const Vec3> bx) const;
+  // Whether a contact's friction acts in this step: mu and lambda given, its vertex free.
+  bool rubs(const MembraneContact& c) const;
   // The held rows' normal taken out of the matrix (S H S + (m / h^2) n n^T, S = I - n n^T), so
   // that a solve moves them along their planes only.
   void filter_held(const ImplicitLoads& loads);
@@ -232,6 +267,7 @@ class ImplicitMembrane {
   std::vector<MembraneHinge> hinges_;
   std::uint32_t body_count_ = 0;
   Real body_stop_k_ = 0;  // this step's ImplicitSolveParams::body_stop_stiffness (unit: N/m)
+  Real stick_slip_ = 0;   // this step's ImplicitSolveParams::stick_slip (unit: m)
   // Per body: its diagonal block, and its block with every free vertex: a contact may join it to
   // any.
   std::vector<Block> body_diagonal_;
@@ -246,6 +282,7 @@ class ImplicitMembrane {
   std::vector<std::uint32_t> held_, pending_;
   std::vector<std::uint8_t> released_, factored_held_;
   std::vector<Real> contact_forces_;
+  std::vector<Vec3> contact_frictions_;
   std::vector<Mat3> hessian_;  // its blocks, as Block indexes them
   // Its part no iterate changes (masses, hinges), rebuilt after a hinge is cut.
   std::vector<Mat3> constant_hessian_;

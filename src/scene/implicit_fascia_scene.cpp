@@ -68,6 +68,33 @@ bool moves_proxy(const std::vector<physics::ProxyBody>& proxies, std::uint32_t b
   return body < proxies.size() && proxies[body].active();
 }
 
+bool pressed_before(const SceneImplicitFascia::PressedVertex& a,
+                    const SceneImplicitFascia::PressedVertex& b) {
+  return a.vertex != b.vertex ? a.vertex < b.vertex : a.tag < b.tag;
+}
+
+// A row on the fascia as the implicit step's contact: its plane at the step's end, out by the
+// margin; the surface's motion over the step and its kinetic friction, pressed by the force the
+// last step left between the vertex and that surface (friction's lagged normal force).
+void add_contact(SceneImplicitFascia& f, const physics::ContactRow& c, std::uint32_t first) {
+  const std::uint32_t vertex = c.particle - first;
+  const SceneImplicitFascia::PressedVertex key{vertex, c.tag};
+  const auto found = std::lower_bound(f.pressed.begin(), f.pressed.end(), key, pressed_before);
+  const bool pressed = found != f.pressed.end() && found->vertex == vertex && found->tag == c.tag;
+  f.contacts.push_back({vertex, c.point1 + c.margin * c.normal, c.normal, c.body,
+                        c.point1 - c.point0, c.kinetic_friction, pressed ? found->force : 0});
+  f.contact_tags.push_back(c.tag);
+}
+
+// The force each vertex ended pressed with by each surface, for the next step's friction.
+void keep_pressed(SceneImplicitFascia& f) {
+  const std::span<const Real> force = f.fascia.membrane->contact_forces();
+  f.pressed.clear();
+  for (std::size_t k = 0; k < f.contacts.size(); ++k)
+    if (force[k] > 0) f.pressed.push_back({f.contacts[k].vertex, f.contact_tags[k], force[k]});
+  std::sort(f.pressed.begin(), f.pressed.end(), pressed_before);
+}
+
 // The instruments' rows and holds on the fascia, and their proxies, as the implicit step's
 // bodies; the fixed planes were taken already.
 void gather_instruments(tissue::TissueWorld& w, SceneImplicitFascia& f, std::uint32_t first,
@@ -86,7 +113,7 @@ void gather_instruments(tissue::TissueWorld& w, SceneImplicitFascia& f, std::uin
   f.tool_tags.clear();
   for (physics::ContactRow& c : w.state.contacts.rows) {
     if (c.particle < first || c.particle >= end) continue;
-    f.contacts.push_back({c.particle - first, c.point1 + c.margin * c.normal, c.normal, c.body});
+    add_contact(f, c, first);
     const auto index = static_cast<std::uint32_t>(f.tool_tags.size());
     f.tool_tags.push_back(c.tag);
     c.tag = kImplicitRowMark | index;
@@ -122,8 +149,10 @@ void load_proxies(tissue::TissueWorld& w, SceneImplicitFascia& f, std::uint32_t 
     const Vec3 moved = f.bodies[c.body].position - w.state.proxies[c.body].offset;
     const Real gap = c.normal.dot(P.position[first + c.vertex] - c.point - moved);
     f.tool_depth[k] = force[fixed_planes + k] > 0 ? std::max(Real(0), -gap) : Real(0);
-    f.force_on_body[c.body] -= force[fixed_planes + k] * c.normal;  // the vertex got +F n
-    f.touched[c.body] = f.touched[c.body] || force[fixed_planes + k] > 0;
+    const Vec3& rub = f.fascia.membrane->contact_frictions()[fixed_planes + k];
+    // The vertex got +F n and the friction: the body the opposite.
+    f.force_on_body[c.body] -= force[fixed_planes + k] * c.normal + rub;
+    f.touched[c.body] = f.touched[c.body] || force[fixed_planes + k] > 0 || rub != Vec3::Zero();
   }
   f.attachment_pull.resize(f.attachments.size());
   for (std::size_t k = 0; k < f.attachments.size(); ++k) {
@@ -186,6 +215,8 @@ void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& 
   f.contacts.reserve(w.state.contacts.rows.capacity());
   f.tool_tags.reserve(w.state.contacts.rows.capacity());
   f.tool_depth.reserve(w.state.contacts.rows.capacity());
+  f.contact_tags.reserve(w.state.contacts.rows.capacity());
+  f.pressed.reserve(w.state.contacts.rows.capacity());
   f.attachments.reserve(mesh.particle_capacity);
   f.attachment_pull.reserve(mesh.particle_capacity);
   f.body_stops.reserve(w.state.body_stops.capacity());
@@ -235,15 +266,16 @@ physics::StepResult step_scene_fascia(ThoraxScene& scene) {
     return c.particle >= first && c.particle < end && !moves_proxy(w.state.proxies, c.body);
   };
   f.contacts.clear();
+  f.contact_tags.clear();
   for (const physics::ContactRow& c : w.state.contacts.rows)
-    if (fixed_plane(c))
-      f.contacts.push_back({c.particle - first, c.point1 + c.margin * c.normal, c.normal});
+    if (fixed_plane(c)) add_contact(f, c, first);
   std::erase_if(w.state.contacts.rows, fixed_plane);
   const std::size_t fixed_planes = f.contacts.size();
   gather_instruments(w, f, first, end);
   f.last = tissue::step_implicit_fascia(f.fascia, w, w.model.objects[mesh.object].gravity,
                                         f.contacts, f.bodies, f.solve, f.attachments, f.body_stops);
   load_proxies(w, f, first, fixed_planes);
+  keep_pressed(f);
   damp_fascia(w, mesh);
   f.unsolved_steps += f.last.residual > f.solve.tolerance;
   ++f.steps;

@@ -3,10 +3,11 @@
 // instead of its XPBD rows (`fascia.solver = "implicit"`, or use_implicit_fascia). Each step,
 // staggered, before the XPBD step of everything else:
 // - the heart's, the wall's and the floor's contact rows on the fascia become the implicit
-//   step's frictionless fixed planes (each row's end-of-step surface point moved out by its
-//   margin) and leave the XPBD set;
+//   step's fixed planes (each row's end-of-step surface point moved out by its margin), with the
+//   row's kinetic friction pressed by the force the last step left there, and leave the XPBD set;
 // - the instruments' proxies (physics/proxy_body.hpp) are bodies of the solve: their contact rows
-//   on the fascia become planes that ride on them, their grasp's holds on it stiff springs to
+//   on the fascia become planes that ride on them (with their friction, as the fixed planes'),
+//   their grasp's holds on it stiff springs to
 //   them, the surfaces that stop them (the heart, the chest wall: body stop rows) stiff one-sided
 //   springs on them, each proxy on its coupling's spring and damper (eq. 17's virtual coupling);
 // - the fascia is stepped; a proxy it pushed or pulled gets its spring's rest moved so that the
@@ -65,6 +66,15 @@ struct SceneImplicitFascia {
   Real coagulated_factor = 1;
   std::vector<Real> inverse_mass;  // the fascia's, kept while XPBD steps
   std::vector<Vec3> velocity;
+  // Friction's lagged normal force (physics::MembraneContact::normal_force): each contact's surface
+  // (its row's tag), in the contacts' order, and the force each vertex was pressed with by each
+  // surface at the last step's end, sorted by vertex and surface.
+  struct PressedVertex {
+    std::uint32_t vertex = 0, tag = 0;
+    Real force = 0;  // (unit: N)
+  };
+  std::vector<std::uint32_t> contact_tags;
+  std::vector<PressedVertex> pressed;
 };
 
 // Replaces the fascia's XPBD rows (distance and dihedral: removed from the constraint system) by
