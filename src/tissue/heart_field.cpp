@@ -1,5 +1,6 @@
 #include "tissue/heart_field.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -137,6 +138,10 @@ void advance_heart(HeartField& h, TissueWorld& world, double time_s) {
   h.phase = h.playback.phase_at(time_s);
   h.previous = h.current;  // sized at set-up: no allocation
   interpolate_heart(h.model, h.phase, h.current);
+  Real farthest = 0;  // no point of the surface moved farther (heart_clearance.hpp)
+  for (std::size_t v = 0; v < h.current.size(); ++v)
+    farthest = std::max(farthest, (h.current[v] - h.previous[v]).norm());
+  h.clearance.travel += farthest;
   refresh_collider(h);
   physics::Particles& P = world.state.particles;
   for (const HeartField::Anchor& a : h.anchors) {
@@ -147,43 +152,94 @@ void advance_heart(HeartField& h, TissueWorld& world, double time_s) {
   }
 }
 
-// Nearest point of each component of the heart's surface to p within `search`, the side of p
-// (signed distance, negative inside) and the surface normal there. The heart is a union of
-// closed surfaces (LV, RV) that may overlap; p is inside the heart when it is inside any.
-void nearest_per_component(HeartField& h, const Vec3& p, Real search) {
+namespace {
+
+// nearest_per_component's search, reaching `reach` >= search: what lies between search and reach
+// is found but not reported, and bounds the distance to the whole surface. Returns that bound:
+// no triangle nearer to p (a rounding's slack under it).
+// A `seed` triangle (the particle's nearest last time, or kNone) is tried first: its distance
+// lets the search skip most others by their boxes. The answer is the same: the seed is a
+// candidate like any other, and one as near with a lower index still wins.
+Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach,
+                  std::uint32_t seed = HeartField::kNone) {
   const auto& tris = h.model.topology.triangles;
   for (HeartField::Nearest& n : h.nearest)
     n = HeartField::Nearest{};
-  h.grid.visit(
-      geometry::Box(p - Vec3::Constant(search), p + Vec3::Constant(search)), h.visited, h.stamp,
-      [&](std::uint32_t t) {
-        HeartField::Nearest& best = h.nearest[h.triangle_component[t]];
-        // A triangle's distance is at least its box's: skip the closest-point computation for
-        // triangles whose box is beyond the search or the component's best so far. The slack
-        // keeps the skip conservative under rounding, so the answer is the same.
-        const Real box2 = h.boxes[t].squaredExteriorDistance(p) * kBoxSlack;
-        if (box2 > search * search || box2 > best.distance2) return;
-        const auto& tri = tris[t];
-        const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
-            p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
-        if (q.distance2 > search * search) return;
-        if (q.distance2 > best.distance2 || (q.distance2 == best.distance2 && t > best.triangle))
-          return;
-        best.distance2 = q.distance2;
-        best.triangle = t;
-        best.point = q.point;
-        best.normal = q.bary[0] * h.normals[tri[0]] + q.bary[1] * h.normals[tri[1]] +
-                      q.bary[2] * h.normals[tri[2]];
-      });
+  auto consider = [&](std::uint32_t t) {
+    HeartField::Nearest& best = h.nearest[h.triangle_component[t]];
+    // A triangle's distance is at least its box's: skip the closest-point computation for
+    // triangles whose box is beyond the reach or the component's best so far. The slack
+    // keeps the skip conservative under rounding, so the answer is the same.
+    const Real box2 = h.boxes[t].squaredExteriorDistance(p) * kBoxSlack;
+    if (box2 > reach * reach || box2 > best.distance2) return;
+    const auto& tri = tris[t];
+    const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
+        p, h.current[tri[0]], h.current[tri[1]], h.current[tri[2]]);
+    if (q.distance2 > reach * reach) return;
+    if (q.distance2 > best.distance2 || (q.distance2 == best.distance2 && t > best.triangle))
+      return;
+    best.distance2 = q.distance2;
+    best.triangle = t;
+    best.point = q.point;
+    best.normal = q.bary[0] * h.normals[tri[0]] + q.bary[1] * h.normals[tri[1]] +
+                  q.bary[2] * h.normals[tri[2]];
+  };
+  if (seed != HeartField::kNone) consider(seed);
+  h.grid.visit(geometry::Box(p - Vec3::Constant(reach), p + Vec3::Constant(reach)), h.visited,
+               h.stamp, consider);
+  // Every triangle is beyond the reach (not visited, or its box is) or no nearer than its
+  // component's best.
+  Real clear2 = reach * reach;
   for (HeartField::Nearest& n : h.nearest) {
-    if (n.triangle == HeartField::kNone || !(n.normal.norm() > 0)) {
-      n.triangle = HeartField::kNone;
+    clear2 = std::min(clear2, n.distance2);
+    if (n.triangle == HeartField::kNone || n.distance2 > search * search ||
+        !(n.normal.norm() > 0)) {
+      n = HeartField::Nearest{};
       continue;
     }
     n.normal.normalize();
     const Real d = std::sqrt(n.distance2);
     n.signed_distance = (p - n.point).dot(n.normal) < 0 ? -d : d;
   }
+  return std::sqrt(clear2) * kBoxSlack;
+}
+
+}  // namespace
+
+// Nearest point of each component of the heart's surface to p within `search`, the side of p
+// (signed distance, negative inside) and the surface normal there. The heart is a union of
+// closed surfaces (LV, RV) that may overlap; p is inside the heart when it is inside any.
+void nearest_per_component(HeartField& h, const Vec3& p, Real search) {
+  search_heart(h, p, search, search);
+}
+
+void nearest_per_component_of_particle(HeartField& h, std::uint32_t particle, std::size_t particles,
+                                       const Vec3& p, Real search) {
+  HeartClearance& c = h.clearance;
+  if (c.distance.size() != particles) {  // once, at the first step
+    c.distance.assign(particles, Real(-1));
+    c.from.assign(particles, Vec3::Zero());
+    c.travel_at.assign(particles, Real(0));
+    c.nearest_triangle.assign(particles, HeartField::kNone);
+  }
+  const Real known = c.distance[particle];
+  if (known - (p - c.from[particle]).norm() - (c.travel - c.travel_at[particle]) > search) {
+    ++c.skipped;
+    for (HeartField::Nearest& n : h.nearest)
+      n = HeartField::Nearest{};
+    return;
+  }
+  ++c.searched;
+  // A particle near the heart last time searches as far as asked (it is likely near still); one
+  // clear of it, or new, farther.
+  const Real reach = known < 0 || known >= search ? search + c.reach : search;
+  std::uint32_t& seed = c.nearest_triangle[particle];
+  c.distance[particle] = search_heart(h, p, search, reach, seed);
+  seed = HeartField::kNone;
+  for (const HeartField::Nearest& n : h.nearest)
+    if (n.triangle != HeartField::kNone) seed = n.triangle;
+  c.from[particle] = p;
+  c.travel_at[particle] = c.travel;
 }
 
 Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
@@ -232,7 +288,8 @@ std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
     // between them).
     bool moved = false;
     for (int pass = 0; pass < kHeartCollisionPasses; ++pass) {
-      nearest_per_component(h, P.position[i], search);
+      nearest_per_component_of_particle(h, static_cast<std::uint32_t>(i), P.size(), P.position[i],
+                                        search);
       const HeartField::Nearest* deepest = nullptr;
       for (const HeartField::Nearest& n : h.nearest) {
         if (n.triangle == HeartField::kNone || n.signed_distance >= h.margin - inside) continue;

@@ -18,6 +18,7 @@
 
 #include "geometry/uniform_grid.hpp"
 #include "tissue/heart.hpp"
+#include "tissue/heart_clearance.hpp"
 #include "tissue/tissue_world.hpp"
 #include "tissue/topology_change.hpp"
 
@@ -54,6 +55,7 @@ struct HeartField {
     Real signed_distance = 0;
   };
   std::vector<Nearest> nearest;
+  HeartClearance clearance;  // what the particles' last searches proved (heart_clearance.hpp)
 };
 
 // Projection passes per particle in collide_with_heart (where the ventricles overlap, leaving
@@ -97,6 +99,13 @@ std::uint32_t collide_with_heart(HeartField& heart, physics::Particles& particle
 // Fills heart.nearest: per component (LV, RV) the nearest surface point to p within `search`,
 // its triangle, interpolated normal and signed distance (triangle kNone where none is that near).
 void nearest_per_component(HeartField& heart, const Vec3& p, Real search);
+
+// nearest_per_component for particle `particle` (of `particles`) at its query point p: answered
+// from heart.clearance without searching when that proves nothing within `search`, else searched
+// (as far as clearance.reach farther when the particle was clear last time, to prove it clear
+// for the steps to come). The same answer as nearest_per_component(heart, p, search).
+void nearest_per_component_of_particle(HeartField& heart, std::uint32_t particle,
+                                       std::size_t particles, const Vec3& p, Real search);
 
 // Signed distance of p from the heart, the union of its closed surfaces, near p: inside any of
 // them, minus the depth in the one it is deepest in; outside all, the distance to the nearest;

@@ -17,7 +17,7 @@ void gather_heart_contacts(HeartField& h, const physics::Particles& P, Real dt,
     const Vec3 probe = P.position[k] + dt * P.velocity[k];
     const Real search = params.search + h.margin + dt * P.velocity[k].norm();
     if (bounds.exteriorDistance(probe) > search) continue;
-    nearest_per_component(h, probe, search);
+    nearest_per_component_of_particle(h, static_cast<std::uint32_t>(k), P.size(), probe, search);
     for (const HeartField::Nearest& n : h.nearest) {
       if (n.triangle == HeartField::kNone || n.signed_distance > search) continue;
       const auto& t = tris[n.triangle];
