@@ -19,9 +19,6 @@ struct HeartClearance {
   std::vector<Real> distance;  // (unit: m)
   std::vector<Vec3> from;
   std::vector<Real> travel_at;  // (unit: m)
-  // A heart triangle the last search found within its search, or ~0u: the next search tries it
-  // first.
-  std::vector<std::uint32_t> nearest_triangle;
   // The sum over the heart's moves of its farthest vertex's displacement (unit: m).
   Real travel = 0;
   // How much farther than asked a search reaches when it may find the particle clear: a

@@ -157,11 +157,7 @@ namespace {
 // nearest_per_component's search, reaching `reach` >= search: what lies between search and reach
 // is found but not reported, and bounds the distance to the whole surface. Returns that bound:
 // no triangle nearer to p (a rounding's slack under it).
-// A `seed` triangle (the particle's nearest last time, or kNone) is tried first: its distance
-// lets the search skip most others by their boxes. The answer is the same: the seed is a
-// candidate like any other, and one as near with a lower index still wins.
-Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach,
-                  std::uint32_t seed = HeartField::kNone) {
+Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach) {
   const auto& tris = h.model.topology.triangles;
   for (HeartField::Nearest& n : h.nearest)
     n = HeartField::Nearest{};
@@ -184,7 +180,6 @@ Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach,
     best.normal = q.bary[0] * h.normals[tri[0]] + q.bary[1] * h.normals[tri[1]] +
                   q.bary[2] * h.normals[tri[2]];
   };
-  if (seed != HeartField::kNone) consider(seed);
   h.grid.visit(geometry::Box(p - Vec3::Constant(reach), p + Vec3::Constant(reach)), h.visited,
                h.stamp, consider);
   // Every triangle is beyond the reach (not visited, or its box is) or no nearer than its
@@ -220,7 +215,6 @@ void nearest_per_component_of_particle(HeartField& h, std::uint32_t particle, st
     c.distance.assign(particles, Real(-1));
     c.from.assign(particles, Vec3::Zero());
     c.travel_at.assign(particles, Real(0));
-    c.nearest_triangle.assign(particles, HeartField::kNone);
   }
   const Real known = c.distance[particle];
   if (known - (p - c.from[particle]).norm() - (c.travel - c.travel_at[particle]) > search) {
@@ -233,11 +227,7 @@ void nearest_per_component_of_particle(HeartField& h, std::uint32_t particle, st
   // A particle near the heart last time searches as far as asked (it is likely near still); one
   // clear of it, or new, farther.
   const Real reach = known < 0 || known >= search ? search + c.reach : search;
-  std::uint32_t& seed = c.nearest_triangle[particle];
-  c.distance[particle] = search_heart(h, p, search, reach, seed);
-  seed = HeartField::kNone;
-  for (const HeartField::Nearest& n : h.nearest)
-    if (n.triangle != HeartField::kNone) seed = n.triangle;
+  c.distance[particle] = search_heart(h, p, search, reach);
   c.from[particle] = p;
   c.travel_at[particle] = c.travel;
 }
