@@ -9,7 +9,7 @@
 namespace imasim::cli {
 namespace {
 
-std::string duration_text(double seconds) {
+std::string remaining_text(double seconds) {
   char text[48];
   if (seconds < 120) {
     std::snprintf(text, sizeof text, "%.0f s", seconds);
@@ -47,7 +47,7 @@ void RunProgress::update(double simulated_s) {
                     "%s: %.1fx slower than real time on this machine (%.1f ms a %.0f ms "
                     "step); the %.1f s asked for will take about %s more",
                     who_, slowdown, 1e3 * dt_ * slowdown, 1e3 * dt_, total_s_,
-                    duration_text(left).c_str());
+                    remaining_text(left).c_str());
       out_ << (line_open_ ? "\n" : "") << text << '\n';
       line_open_ = false;
     }

@@ -13,14 +13,15 @@ namespace imasim::metrics {
 namespace {
 
 // Layout (unit: px).
-constexpr int kMargin = 24, kTitleBand = 40, kLegendBand = 30, kLeftBand = 74, kBottomBand = 56;
-constexpr int kRightPad = 20, kMinWidth = 400, kMinHeight = 300, kMaxSide = 8000;
+constexpr int kPlotMargin = 24, kPlotTitleBand = 40, kPlotLegendBand = 30, kPlotLeftBand = 74,
+              kPlotBottomBand = 56;
+constexpr int kPlotRightPad = 20, kPlotMinWidth = 400, kPlotMinHeight = 300, kPlotMaxSide = 8000;
 constexpr double kMarkerRadius = 4.5;
 constexpr double kBarSlot = 0.8;  // share of the x spacing the bars at one x fill
 
-const TextStyle kTitle{20, true};
-const TextStyle kLabel{14};
-const TextStyle kTick{12.5, false, {0.2, 0.2, 0.2}};
+const TextStyle kPlotTitle{20, true};
+const TextStyle kPlotLabel{14};
+const TextStyle kPlotTick{12.5, false, {0.2, 0.2, 0.2}};
 
 constexpr std::array<std::array<double, 3>, 8> kPalette{{{0.000, 0.447, 0.698},
                                                          {0.835, 0.369, 0.000},
@@ -50,11 +51,12 @@ std::size_t bar_rank(const LinePlot& p, std::size_t series) {
 }
 
 void check_plot(const LinePlot& p) {
-  if (p.width < kMinWidth || p.width > kMaxSide || p.height < kMinHeight || p.height > kMaxSide)
-    throw std::invalid_argument("plot size " + std::to_string(p.width) + " x " +
-                                std::to_string(p.height) + " px is outside " +
-                                std::to_string(kMinWidth) + " x " + std::to_string(kMinHeight) +
-                                " to " + std::to_string(kMaxSide) + " px");
+  if (p.width < kPlotMinWidth || p.width > kPlotMaxSide || p.height < kPlotMinHeight ||
+      p.height > kPlotMaxSide)
+    throw std::invalid_argument(
+        "plot size " + std::to_string(p.width) + " x " + std::to_string(p.height) +
+        " px is outside " + std::to_string(kPlotMinWidth) + " x " + std::to_string(kPlotMinHeight) +
+        " to " + std::to_string(kPlotMaxSide) + " px");
   std::size_t points = 0;
   for (const PlotSeries& s : p.series) {
     if (s.x.size() != s.y.size())
@@ -145,7 +147,7 @@ void draw_reference(PlotCanvas& canvas, const LinePlot& p, const PlotArea& a) {
   cairo_line_to(cr, a.left + a.width, y);
   cairo_stroke(cr);
   cairo_restore(cr);
-  TextStyle style = kTick;
+  TextStyle style = kPlotTick;
   style.rgb = p.reference->rgb;
   canvas.text(p.reference->label, a.left + a.width - 6, y - 4, HAlign::right, VAlign::baseline,
               style);
@@ -162,7 +164,7 @@ void draw_axes(PlotCanvas& canvas, const LinePlot& p, const PlotArea& a) {
     cairo_move_to(cr, a.left, std::round(y) + 0.5);
     cairo_line_to(cr, a.left + a.width, std::round(y) + 0.5);
     cairo_stroke(cr);
-    canvas.text(tick_label(t, ty.step), a.left - 8, y, HAlign::right, VAlign::middle, kTick);
+    canvas.text(tick_label(t, ty.step), a.left - 8, y, HAlign::right, VAlign::middle, kPlotTick);
   }
   const Ticks tx = x_ticks(p, a);
   canvas.set_colour({0.3, 0.3, 0.3});
@@ -170,15 +172,16 @@ void draw_axes(PlotCanvas& canvas, const LinePlot& p, const PlotArea& a) {
     const double x = a.to_picture(t, 0)[0];
     cairo_move_to(cr, x, bottom);
     cairo_line_to(cr, x, bottom + 5);
-    canvas.text(tick_label(t, tx.step), x, bottom + 8, HAlign::centre, VAlign::top, kTick);
+    canvas.text(tick_label(t, tx.step), x, bottom + 8, HAlign::centre, VAlign::top, kPlotTick);
   }
   canvas.set_colour({0.3, 0.3, 0.3});
   cairo_set_line_width(cr, 1);
   cairo_stroke(cr);
   cairo_rectangle(cr, a.left + 0.5, a.top + 0.5, a.width - 1, a.height - 1);
   cairo_stroke(cr);
-  canvas.text(p.x_label, a.left + a.width / 2.0, bottom + 30, HAlign::centre, VAlign::top, kLabel);
-  TextStyle turned = kLabel;
+  canvas.text(p.x_label, a.left + a.width / 2.0, bottom + 30, HAlign::centre, VAlign::top,
+              kPlotLabel);
+  TextStyle turned = kPlotLabel;
   turned.angle = std::numbers::pi / 2;
   canvas.text(p.y_label, a.left - 60, a.top + a.height / 2.0, HAlign::centre, VAlign::top, turned);
 }
@@ -186,7 +189,7 @@ void draw_axes(PlotCanvas& canvas, const LinePlot& p, const PlotArea& a) {
 void draw_legend(PlotCanvas& canvas, const LinePlot& p, const PlotArea& a) {
   cairo_t* cr = canvas.cr();
   double x = a.left;
-  const double y = a.top - kLegendBand / 2.0 - 2;
+  const double y = a.top - kPlotLegendBand / 2.0 - 2;
   for (std::size_t s = 0; s < p.series.size(); ++s) {
     canvas.set_colour(colour_of(p, s));
     if (p.series[s].style == SeriesStyle::bars) {
@@ -202,8 +205,8 @@ void draw_legend(PlotCanvas& canvas, const LinePlot& p, const PlotArea& a) {
       cairo_arc(cr, x + 14, y, kMarkerRadius, 0, 2 * std::numbers::pi);
       cairo_fill(cr);
     }
-    canvas.text(p.series[s].name, x + 36, y, HAlign::left, VAlign::middle, kLabel);
-    x += 36 + canvas.text_width(p.series[s].name, kLabel) + 26;
+    canvas.text(p.series[s].name, x + 36, y, HAlign::left, VAlign::middle, kPlotLabel);
+    x += 36 + canvas.text_width(p.series[s].name, kPlotLabel) + 26;
   }
 }
 
@@ -231,10 +234,10 @@ std::array<double, 2> PlotArea::point_position(const LinePlot& p, std::size_t s,
 PlotArea line_plot_area(const LinePlot& p) {
   check_plot(p);
   PlotArea a;
-  a.left = kMargin + kLeftBand;
-  a.top = kMargin + (p.title.empty() ? 0 : kTitleBand) + kLegendBand;
-  a.width = p.width - a.left - kMargin - kRightPad;
-  a.height = p.height - a.top - kBottomBand - kMargin;
+  a.left = kPlotMargin + kPlotLeftBand;
+  a.top = kPlotMargin + (p.title.empty() ? 0 : kPlotTitleBand) + kPlotLegendBand;
+  a.width = p.width - a.left - kPlotMargin - kPlotRightPad;
+  a.height = p.height - a.top - kPlotBottomBand - kPlotMargin;
   std::vector<double> xs;
   double y0 = INFINITY, y1 = -INFINITY;
   for (const PlotSeries& s : p.series) {
@@ -280,7 +283,8 @@ PlotArea write_line_plot_png(const LinePlot& p, const std::string& png_path,
                              std::span<const std::string> inputs) {
   const PlotArea a = line_plot_area(p);
   PlotCanvas canvas(p.width, p.height, png_path);
-  if (!p.title.empty()) canvas.text(p.title, kMargin, kMargin, HAlign::left, VAlign::top, kTitle);
+  if (!p.title.empty())
+    canvas.text(p.title, kPlotMargin, kPlotMargin, HAlign::left, VAlign::top, kPlotTitle);
   draw_axes(canvas, p, a);
   draw_reference(canvas, p, a);
   draw_series(canvas, p, a);

@@ -7,7 +7,7 @@ namespace imasim::metrics {
 namespace {
 
 constexpr const char* kFont = "DejaVu Sans";
-constexpr int kMaxSide = 16384;  // pixels: cairo's own limit is 32767
+constexpr int kCairoMaxSide = 16384;  // pixels: cairo's own limit is 32767
 
 cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
@@ -24,10 +24,10 @@ void select_font(cairo_t* cr, const TextStyle& style) {
 
 PlotCanvas::PlotCanvas(int width, int height, std::string png_path)
     : width_(width), height_(height), path_(std::move(png_path)) {
-  if (width < 1 || height < 1 || width > kMaxSide || height > kMaxSide)
+  if (width < 1 || height < 1 || width > kCairoMaxSide || height > kCairoMaxSide)
     throw OutputError("cannot draw " + path_ + ": " + std::to_string(width) + " x " +
                       std::to_string(height) + " pixels is outside 1 to " +
-                      std::to_string(kMaxSide));
+                      std::to_string(kCairoMaxSide));
   surface_ = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height);
   cr_ = cairo_create(surface_);
   check("creating the picture");

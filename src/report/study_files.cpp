@@ -10,13 +10,13 @@ namespace imasim::report {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+using OrderedJson = nlohmann::ordered_json;
 
-Json group_json(const metrics::GroupSummary& g) {
+OrderedJson group_json(const metrics::GroupSummary& g) {
   return {{"n", g.n}, {"mean", g.mean}, {"sd", g.sd}};
 }
 
-Json test_json(const SaiComparison& c) {
+OrderedJson test_json(const SaiComparison& c) {
   if (!c.test) return nullptr;
   const metrics::TwoGroupComparison& t = *c.test;
   return {{"a", c.groups[0].mode},      {"b", c.groups[1].mode},    {"t_welch", t.welch.t},
@@ -24,24 +24,24 @@ Json test_json(const SaiComparison& c) {
           {"df_student", t.student.df}, {"p_student", t.student.p}, {"cohen_d", t.cohen_d}};
 }
 
-Json trial_json(const TrialResult& t) {
-  Json j;
+OrderedJson trial_json(const TrialResult& t) {
+  OrderedJson j;
   j["mode"] = t.mode;
   j["trial"] = t.trial;
   j["patient_seed"] = t.patient_seed;
-  j["operator_seed"] = t.operator_seed ? Json(*t.operator_seed) : Json(nullptr);
+  j["operator_seed"] = t.operator_seed ? OrderedJson(*t.operator_seed) : OrderedJson(nullptr);
   j["status"] = t.ok ? "ok" : "failed";
   j["reason"] = t.reason;
   j["wall_s"] = t.wall_s;
   j["files"] = t.files;
-  Json sai = Json::object();
+  OrderedJson sai = OrderedJson::object();
   for (const auto& [tool, v] : t.sai)
     sai[tool] = {{"sai", v.sai},
                  {"samples", v.samples},
                  {"mean_distance_m", v.mean_distance_m},
                  {"heart_side_fraction", v.heart_side_fraction}};
   j["sai"] = sai;
-  Json metrics = Json::object();
+  OrderedJson metrics = OrderedJson::object();
   for (const MetricValue& m : t.metrics)
     metrics[m.name] = {{"value", m.value}, {"pass", m.pass}};
   j["metrics"] = metrics;
@@ -69,9 +69,9 @@ std::string number(double v) {
 nlohmann::ordered_json study_results_json(const StudyInfo& info,
                                           const std::vector<TrialResult>& trials,
                                           const StudySummary& summary) {
-  Json j;
+  OrderedJson j;
   j["format"] = "imasim study v1";
-  Json study;
+  OrderedJson study;
   study["program"] = info.program;
   study["date"] = info.date;
   study["status"] = info.status;
@@ -82,16 +82,16 @@ nlohmann::ordered_json study_results_json(const StudyInfo& info,
   study["operator"] = info.operator_kind;
   study["operator_description"] = info.operator_description;
   if (!info.script.empty()) study["script"] = info.script;
-  study["seconds"] = info.seconds ? Json(*info.seconds) : Json(nullptr);
+  study["seconds"] = info.seconds ? OrderedJson(*info.seconds) : OrderedJson(nullptr);
   study["jobs"] = info.jobs;
   study["trial_timeout_s"] = info.trial_timeout_s;
   j["study"] = study;
   j["headline"] = {{"score", "sai"}, {"instrument", kHeadlineInstrument}};
-  Json sai = Json::object();
+  OrderedJson sai = OrderedJson::object();
   for (const SaiComparison& c : summary.sai) {
-    Json groups = Json::object();
+    OrderedJson groups = OrderedJson::object();
     for (const SaiGroup& g : c.groups) {
-      Json gj = group_json(g.summary);
+      OrderedJson gj = group_json(g.summary);
       gj["values"] = g.values;
       gj["representative_trial"] = g.representative_trial;
       groups[g.mode] = gj;
@@ -100,14 +100,14 @@ nlohmann::ordered_json study_results_json(const StudyInfo& info,
         {"groups", groups}, {"test", test_json(c)}, {"test_problem", c.test_problem}};
   }
   j["sai"] = sai;
-  Json metrics = Json::array();
+  OrderedJson metrics = OrderedJson::array();
   for (const MetricSummary& m : summary.metrics) {
-    Json groups = Json::object();
+    OrderedJson groups = OrderedJson::object();
     for (const MetricGroup& g : m.groups) {
-      Json gj = group_json(g.summary);
+      OrderedJson gj = group_json(g.summary);
       gj["passed"] = g.passed;
-      gj["pass_rate"] =
-          g.summary.n > 0 ? Json(double(g.passed) / double(g.summary.n)) : Json(nullptr);
+      gj["pass_rate"] = g.summary.n > 0 ? OrderedJson(double(g.passed) / double(g.summary.n))
+                                        : OrderedJson(nullptr);
       groups[g.mode] = gj;
     }
     metrics.push_back({{"name", m.name},
@@ -119,7 +119,7 @@ nlohmann::ordered_json study_results_json(const StudyInfo& info,
   j["metrics"] = metrics;
   j["trials_ok"] = summary.trials_ok;
   j["trials_failed"] = summary.trials_failed;
-  Json list = Json::array();
+  OrderedJson list = OrderedJson::array();
   for (const TrialResult& t : trials)
     list.push_back(trial_json(t));
   j["trials"] = list;

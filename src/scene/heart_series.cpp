@@ -9,10 +9,6 @@ namespace imasim::scene {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw MeshFileError(path + ": " + what);
-}
-
 // The size of a heart after the file's transform: a mouse heart is about 6 mm long, a human one
 // 12 cm, and the simulated cavity about 30 cm across. Outside these the mesh_scale is wrong
 // (metres read as millimetres, or the reverse) and the run would be meaningless or never end.
@@ -28,7 +24,7 @@ void check_heart_size(const std::string& path, const geometry::TriangleMesh& mes
   std::ostringstream s;
   s << "the heart is " << size << " m across after heart.mesh_scale; expected " << kMinHeartSize
     << " to " << kMaxHeartSize << " m (is the mesh_scale right for the file's unit? 0.001: mm)";
-  fail(path, s.str());
+  fail_mesh_file(path, s.str());
 }
 
 }  // namespace
@@ -46,23 +42,25 @@ tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec, std::vector<st
   for (const std::string& path : spec.phase_files) {
     phases.push_back(load_mesh_file(path, options));
     collapsed = geometry::drop_collapsed_triangles(phases.back());
-    if (phases.back().triangles.empty()) fail(path, "every triangle collapsed when welded");
+    if (phases.back().triangles.empty())
+      fail_mesh_file(path, "every triangle collapsed when welded");
     check_heart_size(path, phases.back());
     const geometry::TriangleMesh& first = phases.front();
     const geometry::TriangleMesh& mesh = phases.back();
     if (mesh.vertex_count() != first.vertex_count() ||
         mesh.triangle_count() != first.triangle_count()) {
-      fail(path, "phase " + std::to_string(phases.size() - 1) + " has " +
-                     std::to_string(mesh.vertex_count()) + " vertices and " +
-                     std::to_string(mesh.triangle_count()) + " triangles, the first phase " +
-                     std::to_string(first.vertex_count()) + " and " +
-                     std::to_string(first.triangle_count()) +
-                     " (after welding coincident vertices and dropping collapsed triangles): one "
-                     "topology is needed");
+      fail_mesh_file(
+          path, "phase " + std::to_string(phases.size() - 1) + " has " +
+                    std::to_string(mesh.vertex_count()) + " vertices and " +
+                    std::to_string(mesh.triangle_count()) + " triangles, the first phase " +
+                    std::to_string(first.vertex_count()) + " and " +
+                    std::to_string(first.triangle_count()) +
+                    " (after welding coincident vertices and dropping collapsed triangles): one "
+                    "topology is needed");
     }
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
       if (mesh.triangles[t] != first.triangles[t])
-        fail(path, "triangle " + std::to_string(t) + " differs from the first phase's");
+        fail_mesh_file(path, "triangle " + std::to_string(t) + " differs from the first phase's");
     }
   }
   if (collapsed > 0 && notes != nullptr) {
@@ -72,7 +70,7 @@ tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec, std::vector<st
   }
   // An open surface (a ventricle open at its valve plane) is capped: the collider needs an inside.
   const geometry::BoundaryLoops boundary = geometry::boundary_loops(phases.front());
-  if (!boundary.defect.empty()) fail(spec.phase_files.front(), boundary.defect);
+  if (!boundary.defect.empty()) fail_mesh_file(spec.phase_files.front(), boundary.defect);
   if (!boundary.loops.empty()) {
     std::size_t added = 0;
     for (geometry::TriangleMesh& phase : phases)
@@ -88,7 +86,7 @@ tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec, std::vector<st
   checks.require_closed = true;
   for (std::size_t k = 0; k < phases.size(); ++k) {
     if (std::string defect = geometry::first_mesh_defect(phases[k], checks); !defect.empty())
-      fail(spec.phase_files[k], defect);
+      fail_mesh_file(spec.phase_files[k], defect);
   }
 
   // Components as contiguous vertex and triangle ranges, in order of their first triangle.
@@ -126,8 +124,9 @@ tissue::HeartModel load_heart_series(const HeartSeriesSpec& spec, std::vector<st
       frame.push_back(phases[k].vertices[v]);
     for (std::uint32_t c = 0; c < count; ++c) {
       if (!(tissue::component_volume(heart, frame, c) > 0)) {
-        fail(spec.phase_files[k], "surface " + std::to_string(c) +
-                                      " encloses no positive volume: its triangles face inwards");
+        fail_mesh_file(spec.phase_files[k],
+                       "surface " + std::to_string(c) +
+                           " encloses no positive volume: its triangles face inwards");
       }
     }
   }

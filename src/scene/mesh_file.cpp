@@ -18,10 +18,6 @@ Vec3 MeshTransform::apply(const Vec3& file_point) const {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw MeshFileError(path + ": " + what);
-}
-
 // The triangles (nine floats each), welded: vertices with the same position (bit for bit, as
 // the file gives them) become one, numbered in order of first use.
 geometry::TriangleMesh weld(const std::vector<float>& corners, const MeshTransform& transform) {
@@ -45,24 +41,26 @@ geometry::TriangleMesh weld(const std::vector<float>& corners, const MeshTransfo
 
 geometry::TriangleMesh load_mesh_file(const std::string& path, const MeshLoadOptions& options) {
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(path, "no such file");
-  if (!std::filesystem::is_regular_file(path, ec)) fail(path, "not a regular file");
+  if (!std::filesystem::exists(path, ec)) fail_mesh_file(path, "no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) fail_mesh_file(path, "not a regular file");
   if (!(options.transform.scale > 0) || !options.transform.rotation.allFinite() ||
       !options.transform.translation.allFinite()) {
-    fail(path, "the mesh transform needs a positive scale and finite rotation and translation");
+    fail_mesh_file(path,
+                   "the mesh transform needs a positive scale and finite rotation and translation");
   }
-  if (std::string problem = mesh_file_problem(path); !problem.empty()) fail(path, problem);
+  if (std::string problem = mesh_file_problem(path); !problem.empty())
+    fail_mesh_file(path, problem);
   std::vector<float> corners;
   try {
     corners = import_triangle_corners_isolated(path);
   } catch (const MeshImportError& e) {
-    fail(path, e.what());
+    fail_mesh_file(path, e.what());
   }
   geometry::TriangleMesh mesh = weld(corners, options.transform);
-  if (mesh.triangles.empty()) fail(path, "the file holds no triangles");
+  if (mesh.triangles.empty()) fail_mesh_file(path, "the file holds no triangles");
   if (!options.run_checks) return mesh;
   if (std::string defect = geometry::first_mesh_defect(mesh, options.checks); !defect.empty())
-    fail(path, defect);
+    fail_mesh_file(path, defect);
   return mesh;
 }
 

@@ -33,6 +33,11 @@ class MeshFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Throws MeshFileError naming the file: "path: what".
+[[noreturn]] inline void fail_mesh_file(const std::string& path, const std::string& what) {
+  throw MeshFileError(path + ": " + what);
+}
+
 geometry::TriangleMesh load_mesh_file(const std::string& path, const MeshLoadOptions& options = {});
 
 }  // namespace imasim::scene

@@ -1,5 +1,7 @@
 #include "ui/key_bindings.hpp"
 
+// The key codes only: no OpenGL header (the window's files include libepoxy's first).
+#define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
 #include <array>
