@@ -555,6 +555,11 @@ int run_run_command(const RunOptions& o) {
     const double fascia_steps = double(std::max<std::uint64_t>(f.steps, 1));
     out["fascia_newton_iterations_per_step"] = double(f.iterations) / fascia_steps;
     out["fascia_factorizations_per_step"] = double(f.factorizations) / fascia_steps;
+    // Why: the held vertices changed (the rest: the kept matrix converged too slowly), and how
+    // many Newton steps the line search cut short.
+    out["fascia_active_set_factorizations_per_step"] =
+        double(f.active_set_factorizations) / fascia_steps;
+    out["fascia_shortened_iterations_per_step"] = double(f.shortened_iterations) / fascia_steps;
     out["fascia_refits"] = f.refits;
   }
   out["ms_per_step_median"] = median_ms;

@@ -496,6 +496,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
   // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
   // while it converges fast and holds the same vertices, and refactored when not.
   bool refactor = !factored_ || held_changed();
+  bool for_active_set = refactor;      // why the next factorisation is made
   auto along_planes = [&](Dense& d) {  // a held row's normal part taken out
     for (std::uint32_t a = 0; a < free_rows; ++a) {
       if (held_[a] == kNone) continue;
@@ -507,12 +508,15 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     if (refactor) {
       // The exact Hessian where it is positive definite, else (compression the bending and the
       // mass cannot hold) the clamped one.
+      const std::uint32_t before_factoring = report.factorizations;
       bool factored = factor_hessian(x, body_x_, loads, contact_k, true);
       ++report.factorizations;
       if (!factored) {
         factored = factor_hessian(x, body_x_, loads, contact_k, false);
         ++report.factorizations;
       }
+      if (for_active_set)
+        report.active_set_factorizations += report.factorizations - before_factoring;
       if (!factored) {
         report.ok = false;
         factored_ = false;
@@ -545,8 +549,11 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     if (!accepted) {
       if (refactor) break;  // a fresh Newton step finds no descent: solved to Phi's rounding
       refactor = true;
+      for_active_set = false;
       continue;
     }
+    // The loop halves alpha once more after the accepted trial: alpha / 2 was taken.
+    if (alpha < Real(0.5)) ++report.shortened_iterations;
     for (std::uint32_t u : free_vertices_)
       x[u] = trial_[u];
     body_x_ = body_trial_;
@@ -566,7 +573,8 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
     report.residual = largest_imbalance(loads);
     // A matrix that no longer cuts the imbalance fast enough is refactored at the new iterate, as
     // is one whose held rows are not the active set's (the matrix filters them).
-    refactor = held_changed() || report.residual > params.kept_matrix_ratio * before;
+    for_active_set = held_changed();
+    refactor = for_active_set || report.residual > params.kept_matrix_ratio * before;
   }
   for (std::uint32_t u : free_vertices_)
     v[u] = (x[u] - x0_[u]) / h_;

@@ -179,6 +179,13 @@ struct ImplicitSolveParams {
 struct ImplicitStepReport {
   std::uint32_t iterations = 0;      // Newton iterations taken
   std::uint32_t factorizations = 0;  // of the Hessian, a failed exact one counted
+  // Of those, the ones made because the vertices held on fixed planes were not the kept
+  // factorisation's (or none was kept); the rest because the kept one converged too slowly or
+  // found no descent.
+  std::uint32_t active_set_factorizations = 0;
+  // Newton iterations whose line search took less than the full step (a vertex reaching a
+  // plane, a penalty's kink, the potential rising).
+  std::uint32_t shortened_iterations = 0;
   // Largest force imbalance of the step at a free vertex at its end,
   // |m (x - y) / h^2 + grad E - f| (unit: N): zero when the step is solved exactly.
   Real residual = 0;

@@ -281,6 +281,8 @@ physics::StepResult step_scene_fascia(ThoraxScene& scene) {
   ++f.steps;
   f.iterations += f.last.iterations;
   f.factorizations += f.last.factorizations;
+  f.active_set_factorizations += f.last.active_set_factorizations;
+  f.shortened_iterations += f.last.shortened_iterations;
   f.largest_residual = std::max(f.largest_residual, f.last.residual);
   if (!f.last.ok) {
     result.status = physics::StepStatus::non_finite;

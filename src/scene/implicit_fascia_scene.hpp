@@ -48,6 +48,9 @@ struct SceneImplicitFascia {
   Real largest_residual = 0;  // over every step so far (unit: N)
   // Over every step so far: Newton iterations, factorisations, solver rebuilds after a cut.
   std::uint64_t steps = 0, iterations = 0, factorizations = 0, refits = 0;
+  // Of those: factorisations for a changed active set, iterations whose line search shortened
+  // the Newton step (physics::ImplicitStepReport).
+  std::uint64_t active_set_factorizations = 0, shortened_iterations = 0;
   std::uint32_t built_bodies = 0;  // the proxies the solver was built for
   // Scratch, sized at set-up. The contacts: the fixed planes first, then the instruments' rows,
   // whose tags (marked while the XPBD step runs) are kept in tool_tags, in the same order.
