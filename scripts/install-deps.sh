@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake make pkg-config git clang-format
   clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtime for clang (make fuzz)
-  libeigen3-dev libtbb-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
+  libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenigtlink-dev  # OpenIGTLink messages for devices (issue 13)
   libsdl2-dev libspnav-dev  # gamepads and joysticks, 3D mice (issue 13)

@@ -1,5 +1,5 @@
 // No heap allocation inside a step once the scene is built. This binary replaces the C
-// allocator (which operator new and oneTBB both use) with counting wrappers around glibc's.
+// allocator (which operator new uses) with counting wrappers around glibc's.
 #include <gtest/gtest.h>
 
 #include <atomic>

@@ -24,7 +24,7 @@ constexpr bool kPortable = false;
 #endif
 
 constexpr std::uint64_t kClothHash = 0x4b3e03bcb505667dull;
-constexpr std::uint64_t kSessionHash = 0xee176661ca81291aull;
+constexpr std::uint64_t kSessionHash = 0x6086c1ac675c23fdull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

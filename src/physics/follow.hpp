@@ -19,8 +19,10 @@ struct FollowRow {
   Real max_offset = 0;  // lambda_max of eq. 8-9 (unit: m)
 };
 
-inline void project_follow(const FollowRow& f, Vec3* p) {
-  const Vec3 offset = p[f.source] - f.source_reference;
+// source: where the source is (p[f.source], or where it was as the step's group of substeps
+// began when it is in the other rate band: physics/step.cpp).
+inline void project_follow(const FollowRow& f, const Vec3& source, Vec3* p) {
+  const Vec3 offset = source - f.source_reference;
   const Real len = offset.norm();
   p[f.destination] = len > f.max_offset
                          ? Vec3(f.destination_reference + (f.max_offset / len) * offset)

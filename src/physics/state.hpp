@@ -38,6 +38,14 @@ struct StepScratch {
   // Contact, follow and body attachment rows are ordered band 0 first at the start of a step; band
   // 1 starts here.
   std::size_t contact_split = 0, follow_split = 0, body_attachment_split = 0;
+  // The two bands run side by side over each group of substeps (a coarse substep and the fine
+  // ones it spans): per follow row, whether its source is in the other band than its
+  // destination, and that source as the group began, which such a row reads instead.
+  std::vector<std::uint8_t> follow_crosses;
+  std::vector<Vec3> follow_sources;
+  // The proxies as the group began, and the coarse band's copy of them, which its contacts move;
+  // what they moved it by is added to the proxies when the bands join.
+  std::vector<ProxyBody> group_proxies, coarse_proxies;
 };
 
 struct State {

@@ -70,16 +70,18 @@ void for_fine_particles(const Model& model, const State& state, const F& f) {
   }
 }
 
-// The objects stepped in substep s, and the substep length each takes.
+// The objects a pass steps (the fine ones, the coarse ones in their substep), and the substep
+// length each takes.
 struct SubstepPlan {
-  bool coarse_active = false;
+  bool fine_active = true, coarse_active = false;
   Real fine_h = 0, coarse_h = 0;
-  bool active(const ObjectParams& o) const { return !o.coarse || coarse_active; }
+  bool active(const ObjectParams& o) const { return o.coarse ? coarse_active : fine_active; }
   Real h(const ObjectParams& o) const { return o.coarse ? coarse_h : fine_h; }
 };
 
-// Calls body(begin, end, object) over fixed chunks of every active object's dynamic range, in
-// object order, with the chunk's number across all of them (for per-chunk results).
+// Calls body(begin, end, object, chunk) over fixed chunks of every active object's dynamic range,
+// in object order, with the chunk's number across every object's (for per-chunk results: the
+// fine and the coarse band's passes, run side by side, number theirs apart).
 template <class Body>
 void for_active_particles(const Model& model, const State& state, const SubstepPlan& plan,
                           const Executor& exec, const Body& body) {
@@ -87,13 +89,15 @@ void for_active_particles(const Model& model, const State& state, const SubstepP
   std::size_t chunk_base = 0;
   for (std::size_t o = 0; o < model.objects.size(); ++o) {
     const ObjectRange& r = ranges[o];
-    if (r.dynamic_end == 0 || !plan.active(model.objects[o])) continue;
+    if (r.dynamic_end == 0) continue;
     const std::size_t first = r.dynamic_first, n = r.dynamic_end - r.dynamic_first;
+    const std::size_t base = chunk_base;
+    chunk_base += (n + kParticleBlock - 1) / kParticleBlock;
+    if (!plan.active(model.objects[o])) continue;
     const auto object = static_cast<ObjectId>(o);
     exec.for_chunks(n, kParticleBlock, [&](std::size_t begin, std::size_t end) {
-      body(first + begin, first + end, object, chunk_base + begin / kParticleBlock);
+      body(first + begin, first + end, object, base + begin / kParticleBlock);
     });
-    chunk_base += (n + kParticleBlock - 1) / kParticleBlock;
   }
 }
 
@@ -200,6 +204,11 @@ void order_rows_by_band(const Model& model, State& state) {
       std::partition(follows.begin(), follows.end(),
                      [&](const FollowRow& f) { return fine(f.destination); }) -
       follows.begin());
+  auto& crosses = state.scratch.follow_crosses;
+  crosses.resize(follows.size());  // grows only with the rows (no allocation at a steady count)
+  state.scratch.follow_sources.resize(follows.size());
+  for (std::size_t k = 0; k < follows.size(); ++k)
+    crosses[k] = fine(follows[k].source) != fine(follows[k].destination);
 }
 
 // The rows of `band` in a sequence ordered by order_rows_by_band.
@@ -215,7 +224,9 @@ std::span<Row> band_rows(std::vector<Row>& rows, std::size_t split, std::uint32_
 // A row naming a proxy body shares its corrections with it (contact.hpp), against the body's
 // offset at the band's substep start.
 // pushed: how far a starting overlap may have been pushed out by the substep's end (unit: m).
-void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Real h, Real pushed) {
+// proxies: the band's view of the proxy bodies (the coarse band's, a copy: below).
+void project_contacts(State& state, std::span<ProxyBody> proxies, std::uint32_t band, Real tau0,
+                      Real tau1, Real h, Real pushed) {
   Particles& P = state.particles;
   for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
     const Real allowance = overlap_allowance(c, pushed);
@@ -224,16 +235,16 @@ void project_contacts(State& state, std::uint32_t band, Real tau0, Real tau1, Re
                       h, allowance);
       continue;
     }
-    IMASIM_ASSERT(c.body < state.proxies.size());
-    ProxyBody& b = state.proxies[c.body];
+    IMASIM_ASSERT(c.body < proxies.size());
+    ProxyBody& b = proxies[c.body];
     project_contact(c, P.predicted.data(), P.position.data(), P.inverse_mass.data(), b,
                     band == 0 ? b.substep_start : b.coarse_start, tau0, tau1, h, allowance);
   }
   // The particles the bodies hold, after their contacts: one body, so serially, in order.
   for (BodyAttachmentRow& r :
        band_rows(state.body_attachments, state.scratch.body_attachment_split, band)) {
-    IMASIM_ASSERT(r.particle < P.size() && r.body < state.proxies.size());
-    project_body_attachment(r, P.predicted.data(), P.inverse_mass.data(), state.proxies[r.body], h);
+    IMASIM_ASSERT(r.particle < P.size() && r.body < proxies.size());
+    project_body_attachment(r, P.predicted.data(), P.inverse_mass.data(), proxies[r.body], h);
   }
 }
 
@@ -260,25 +271,44 @@ void project_proxy_couplings(State& state, Real h, Real tau0, Real tau1) {
   }
 }
 
-// The follow rows whose destination is in `band`, in order.
+// The follow rows whose destination is in `band`, in order. A row whose source is in the other
+// band reads it as the group of substeps began (StepScratch::follow_sources): the bands run side
+// by side and never read each other's particles while they do.
 void project_follows(State& state, std::uint32_t band) {
   Particles& P = state.particles;
-  for (const FollowRow& f : band_rows(state.follows, state.scratch.follow_split, band)) {
+  const std::size_t first = band == 0 ? 0 : state.scratch.follow_split;
+  const auto rows = band_rows(state.follows, state.scratch.follow_split, band);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const FollowRow& f = rows[k];
     IMASIM_ASSERT(f.source < P.size() && f.destination < P.size());
     if (P.inverse_mass[f.destination] == 0) continue;
-    project_follow(f, P.predicted.data());
+    if (state.scratch.follow_crosses[first + k])
+      project_follow(f, state.scratch.follow_sources[first + k], P.predicted.data());
+    else
+      project_follow(f, P.predicted[f.source], P.predicted.data());
   }
 }
 
-// h: the band's substep; a body's surface moved with its offset over it as well.
-void remove_separating_velocities(State& state, std::uint32_t band, Real inverse_dt, Real h) {
+// At the start of a group of substeps: the sources the crossing follow rows read, their positions
+// (where the last substep left them, or the caller between steps).
+void snapshot_crossing_sources(State& state) {
+  const Vec3* p = state.particles.position.data();
+  for (std::size_t k = 0; k < state.follows.size(); ++k)
+    if (state.scratch.follow_crosses[k])
+      state.scratch.follow_sources[k] = p[state.follows[k].source];
+}
+
+// h: the band's substep; a body's surface moved with its offset over it as well (proxies: the
+// band's view of the bodies).
+void remove_separating_velocities(State& state, std::span<const ProxyBody> proxies,
+                                  std::uint32_t band, Real inverse_dt, Real h) {
   Vec3* v = state.particles.velocity.data();
   for (const ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
     if (c.body == kNoBody) {
       remove_separating_velocity(c, v, inverse_dt);
       continue;
     }
-    const ProxyBody& b = state.proxies[c.body];
+    const ProxyBody& b = proxies[c.body];
     const Vec3& start = band == 0 ? b.substep_start : b.coarse_start;
     remove_separating_velocity(c, v, inverse_dt, (b.offset - start) / h);
   }
@@ -308,7 +338,6 @@ std::uint32_t update_velocities(const Model& model, State& state, const SubstepP
                                 const Executor& exec) {
   Particles& P = state.particles;
   auto& first_bad = state.scratch.block_first_bad;
-  std::size_t chunks = 0;
   for_active_particles(model, state, plan, exec,
                        [&](std::size_t begin, std::size_t end, ObjectId o, std::size_t c) {
                          const ObjectParams& object = model.objects[o];
@@ -330,14 +359,18 @@ std::uint32_t update_velocities(const Model& model, State& state, const SubstepP
                          }
                          first_bad[c] = bad;
                        });
+  std::uint32_t first = kInvalidIndex;
+  std::size_t chunk_base = 0;
   for (std::size_t o = 0; o < model.objects.size(); ++o) {
     const ObjectRange& r = state.scratch.object_ranges[o];
-    if (r.dynamic_end == 0 || !plan.active(model.objects[o])) continue;
-    chunks += (r.dynamic_end - r.dynamic_first + kParticleBlock - 1) / kParticleBlock;
+    if (r.dynamic_end == 0) continue;
+    const std::size_t chunks =
+        (r.dynamic_end - r.dynamic_first + kParticleBlock - 1) / kParticleBlock;
+    if (plan.active(model.objects[o]))
+      for (std::size_t c = chunk_base; c < chunk_base + chunks; ++c)
+        first = std::min(first, first_bad[c]);
+    chunk_base += chunks;
   }
-  std::uint32_t first = kInvalidIndex;
-  for (std::size_t c = 0; c < chunks; ++c)
-    first = std::min(first, first_bad[c]);
   return first;
 }
 
@@ -391,6 +424,8 @@ StepResult step(const Model& model, State& state, Executor& exec) {
     b.step_start = b.coarse_start = b.offset;
     b.impulse = Vec3::Zero();
   }
+  scratch.group_proxies.resize(state.proxies.size());  // grow only with the instruments
+  scratch.coarse_proxies.resize(state.proxies.size());
   const ProjectionContext fine{P.predicted.data(), P.inverse_mass.data(),
                                scratch.projection_terms.data()};
   const ProjectionContext coarse{P.predicted.data(), P.inverse_mass.data(),
@@ -401,85 +436,149 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   profile[Stage::predict] += clock.lap();
 
   StepResult result;
+  ConstraintSystem& cs = state.constraints;
+  const Real inverse_dt = 1 / solver.dt;
+  SubstepPlan fine_plan = plan, coarse_plan = plan;
+  fine_plan.coarse_active = false;
+  coarse_plan.fine_active = false;
+  coarse_plan.coarse_active = true;
+  const bool two_bands = std::any_of(model.objects.begin(), model.objects.end(),
+                                     [&](const ObjectParams& o) { return o.coarse; });
+  // A fine substep's taus and its first and last part. The first ends where a coarse substep
+  // joins the fine band (after its first sweep's contacts); the last is everything after.
+  struct FineTimes {
+    Real tau0, tau1, pushed;
+    bool bending;
+  };
+  auto fine_times = [&](std::uint32_t s) {
+    return FineTimes{Real(s) / Real(solver.substeps), Real(s + 1) / Real(solver.substeps),
+                     solver.push_out_speed * (Real(s + 1) / Real(solver.substeps)) * solver.dt,
+                     (s + 1) % bending_stride == 0};
+  };
+  auto fine_sweep = [&](const FineTimes& t, bool with_bending) {
+    project_band(cs, 0, fine, with_bending && t.bending ? &fine_bending : nullptr, exec);
+    project_follows(state, 0);
+    profile[Stage::solve] += clock.lap();
+    project_contacts(state, state.proxies, 0, t.tau0, t.tau1, plan.fine_h, t.pushed);
+    profile[Stage::contacts] += clock.lap();
+  };
+  auto fine_begin = [&](std::uint32_t s) {
+    if (bending_stride > 1 && s == solver.substeps - bending_stride) {
+      for_fine_particles(model, state,
+                         [&](std::uint32_t i) { scratch.group_start[i] = P.position[i]; });
+    }
+    predict(model, state, fine_plan, exec);
+    profile[Stage::predict] += clock.lap();
+    cs.reset_lambda(0);
+    for (ProxyBody& b : state.proxies) {
+      b.substep_start = b.offset;
+      b.lambda = Vec3::Zero();
+    }
+    reset_contact_depths(state, 0);
+    profile[Stage::solve] += clock.lap();
+    fine_sweep(fine_times(s), true);
+  };
+  // false: a velocity was not finite (result says which).
+  auto fine_finish = [&](std::uint32_t s) {
+    const FineTimes t = fine_times(s);
+    for (std::uint32_t it = 0; it < solver.iterations; ++it) {
+      if (it > 0) fine_sweep(t, true);
+      project_proxy_couplings(state, plan.fine_h, t.tau0, t.tau1);
+      // Further sweeps of the fine band's stiff rows, their lambdas accumulating: stretch,
+      // attachments and what they act against (contacts, the proxies' coupling), not bending.
+      for (std::uint32_t sweep = 1; sweep < solver.stretch_sweeps; ++sweep) {
+        fine_sweep(t, false);
+        project_proxy_couplings(state, plan.fine_h, t.tau0, t.tau1);
+      }
+    }
+    const std::uint32_t bad = update_velocities(model, state, fine_plan, exec);
+    if (bad != kInvalidIndex) {
+      result.status = StepStatus::non_finite;
+      result.particle = bad;
+      result.substep = s;
+      return false;
+    }
+    remove_separating_velocities(state, state.proxies, 0, inverse_dt, plan.fine_h);
+    for (std::size_t o = 0; o < model.objects.size(); ++o)
+      if (fine_plan.active(model.objects[o])) apply_angular_damping(model, state, o, plan.fine_h);
+    profile[Stage::velocities] += clock.lap();
+    return true;
+  };
+  // The coarse band's substep, ending with fine substep s: its rows against the proxies as the
+  // group began (their copy, coarse_proxies). Reads no fine particle and writes none, so it runs
+  // beside the fine band. Returns the first particle whose velocity is not finite, if any.
+  auto coarse_substep = [&](std::uint32_t s) {
+    const Real tau1 = Real(s + 1) / Real(solver.substeps);
+    const Real tau0 = Real(s + 1 - stride) / Real(solver.substeps);
+    const Real pushed = solver.push_out_speed * tau1 * solver.dt;
+    predict(model, state, coarse_plan, exec);
+    cs.reset_lambda(1);
+    reset_contact_depths(state, 1);
+    for (std::uint32_t it = 0; it < solver.iterations; ++it) {
+      // coarse_sweeps sweeps, lambdas accumulating, its bending once: its substep is
+      // coarse_stride times the fine one, and so is its softness squared.
+      for (std::uint32_t sweep = 0; sweep < solver.coarse_sweeps; ++sweep) {
+        project_band(cs, 1, coarse, sweep == 0 ? &coarse : nullptr, exec);
+        project_follows(state, 1);
+        project_contacts(state, scratch.coarse_proxies, 1, tau0, tau1, plan.coarse_h, pushed);
+      }
+    }
+    const std::uint32_t bad = update_velocities(model, state, coarse_plan, exec);
+    if (bad != kInvalidIndex) return bad;
+    remove_separating_velocities(state, scratch.coarse_proxies, 1, inverse_dt, plan.coarse_h);
+    for (std::size_t o = 0; o < model.objects.size(); ++o)
+      if (model.objects[o].coarse) apply_angular_damping(model, state, o, plan.coarse_h);
+    return kInvalidIndex;
+  };
+
   exec.run([&] {
-    for (std::uint32_t s = 0; s < solver.substeps; ++s) {
-      if (bending_stride > 1 && s == solver.substeps - bending_stride) {
-        for_fine_particles(model, state,
-                           [&](std::uint32_t i) { scratch.group_start[i] = P.position[i]; });
+    // Groups of substeps: the fine ones up to and with the next coarse substep's last (the last
+    // group may have no coarse substep).
+    for (std::uint32_t first = 0; first < solver.substeps;) {
+      std::uint32_t last = first;
+      while (last + 1 < solver.substeps && (last + 1) % stride != 0)
+        ++last;
+      const bool coarse_here = two_bands && (last + 1) % stride == 0;
+      snapshot_crossing_sources(state);
+      if (!coarse_here) {
+        for (std::uint32_t s = first; s <= last; ++s) {
+          fine_begin(s);
+          if (!fine_finish(s)) return;
+        }
+        first = last + 1;
+        continue;
       }
-      plan.coarse_active = (s + 1) % stride == 0;
-      // The last substep of each group of bending_stride, so the step's last one projects it.
-      const bool bending_active = (s + 1) % bending_stride == 0;
-      const Real tau1 = Real(s + 1) / Real(solver.substeps);
-      const Real fine_tau0 = Real(s) / Real(solver.substeps);
-      const Real coarse_tau0 = Real(s + 1 - stride) / Real(solver.substeps);
-      const Real pushed = solver.push_out_speed * tau1 * solver.dt;
-      predict(model, state, plan, exec);
-      profile[Stage::predict] += clock.lap();
-      ConstraintSystem& cs = state.constraints;
-      cs.reset_lambda(0);
-      for (ProxyBody& b : state.proxies) {
-        b.substep_start = b.offset;
-        b.lambda = Vec3::Zero();
-      }
-      reset_contact_depths(state, 0);
-      if (plan.coarse_active) {
-        cs.reset_lambda(1);
-        reset_contact_depths(state, 1);
-      }
+      std::copy(state.proxies.begin(), state.proxies.end(), scratch.group_proxies.begin());
+      std::copy(state.proxies.begin(), state.proxies.end(), scratch.coarse_proxies.begin());
+      bool fine_ok = true;
+      std::uint32_t coarse_bad = kInvalidIndex;
+      exec.run_side_by_side(
+          [&] {
+            for (std::uint32_t s = first; s < last && fine_ok; ++s) {
+              fine_begin(s);
+              fine_ok = fine_finish(s);
+            }
+            if (fine_ok) fine_begin(last);
+          },
+          [&] { coarse_bad = coarse_substep(last); });
       profile[Stage::solve] += clock.lap();
-      for (std::uint32_t it = 0; it < solver.iterations; ++it) {
-        project_band(cs, 0, fine, bending_active ? &fine_bending : nullptr, exec);
-        project_follows(state, 0);
-        profile[Stage::solve] += clock.lap();
-        project_contacts(state, 0, fine_tau0, tau1, plan.fine_h, pushed);
-        profile[Stage::contacts] += clock.lap();
-        if (plan.coarse_active) {
-          project_band(cs, 1, coarse, &coarse, exec);
-          project_follows(state, 1);
-          profile[Stage::solve] += clock.lap();
-          project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h, pushed);
-          profile[Stage::contacts] += clock.lap();
-          // Further sweeps of the coarse band, lambdas accumulating, its bending once: its
-          // substep is coarse_stride times the fine one, and so is its softness squared.
-          for (std::uint32_t sweep = 1; sweep < solver.coarse_sweeps; ++sweep) {
-            project_band(cs, 1, coarse, nullptr, exec);
-            project_follows(state, 1);
-            profile[Stage::solve] += clock.lap();
-            project_contacts(state, 1, coarse_tau0, tau1, plan.coarse_h, pushed);
-            profile[Stage::contacts] += clock.lap();
-          }
-        }
-        project_proxy_couplings(state, plan.fine_h, fine_tau0, tau1);
-        // Further sweeps of the fine band's stiff rows, their lambdas accumulating: stretch,
-        // attachments and what they act against (contacts, the proxies' coupling), not bending.
-        for (std::uint32_t sweep = 1; sweep < solver.stretch_sweeps; ++sweep) {
-          project_band(cs, 0, fine, nullptr, exec);
-          project_follows(state, 0);
-          profile[Stage::solve] += clock.lap();
-          project_contacts(state, 0, fine_tau0, tau1, plan.fine_h, pushed);
-          profile[Stage::contacts] += clock.lap();
-          project_proxy_couplings(state, plan.fine_h, fine_tau0, tau1);
-        }
-      }
-      const std::uint32_t bad = update_velocities(model, state, plan, exec);
-      if (bad != kInvalidIndex) {
+      if (!fine_ok) return;
+      if (coarse_bad != kInvalidIndex) {
         result.status = StepStatus::non_finite;
-        result.particle = bad;
-        result.substep = s;
+        result.particle = coarse_bad;
+        result.substep = last;
         return;
       }
-      remove_separating_velocities(state, 0, 1 / solver.dt, plan.fine_h);
-      if (plan.coarse_active) {
-        remove_separating_velocities(state, 1, 1 / solver.dt, plan.coarse_h);
-        for (ProxyBody& b : state.proxies)
-          b.coarse_start = b.offset;
+      // The bands join: the proxies take what the coarse band's contacts moved them by.
+      for (std::size_t b = 0; b < state.proxies.size(); ++b) {
+        ProxyBody& proxy = state.proxies[b];
+        proxy.offset += scratch.coarse_proxies[b].offset - scratch.group_proxies[b].offset;
+        proxy.impulse += scratch.coarse_proxies[b].impulse - scratch.group_proxies[b].impulse;
       }
-      for (std::size_t o = 0; o < model.objects.size(); ++o) {
-        const ObjectParams& object = model.objects[o];
-        if (plan.active(object)) apply_angular_damping(model, state, o, plan.h(object));
-      }
-      profile[Stage::velocities] += clock.lap();
+      if (!fine_finish(last)) return;
+      for (ProxyBody& b : state.proxies)
+        b.coarse_start = b.offset;
+      first = last + 1;
     }
   });
 

@@ -1,0 +1,112 @@
+// The solver's thread team (physics/worker_team.hpp) and the executor over it: every part of a
+// job runs exactly once and the job returns only when all have; a part no worker has started is
+// run by the caller, so a worker that never gets a core delays nothing; a job started from inside
+// a part runs inline; many jobs in a row hand over cleanly.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <set>
+#include <thread>
+#include <vector>
+
+#include "physics/executor.hpp"
+#include "physics/worker_team.hpp"
+
+namespace imasim::physics {
+namespace {
+
+TEST(WorkerTeam, EveryPartRunsOnceAndTheJobWaitsForAll) {
+  WorkerTeam team(3);
+  ASSERT_EQ(team.parts(), 3u);
+  for (int job = 0; job < 2000; ++job) {
+    std::array<std::atomic<int>, 3> runs{};
+    team.run([&](unsigned p) {
+      if (job % 100 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));
+      runs[p].fetch_add(1, std::memory_order_relaxed);
+    });
+    for (unsigned p = 0; p < 3; ++p)
+      ASSERT_EQ(runs[p].load(), 1) << "job " << job << ", part " << p;
+  }
+}
+
+TEST(WorkerTeam, TheCallerRunsPartZeroAndAWorkerTheOthersWhenItIsFree) {
+  WorkerTeam team(2);
+  std::set<std::thread::id> seen;
+  int on_worker = 0;
+  for (int job = 0; job < 200; ++job) {
+    std::thread::id ids[2];
+    // Part 0 waits long enough for the worker to claim part 1 (it spins between jobs).
+    team.run([&](unsigned p) {
+      if (p == 0) std::this_thread::sleep_for(std::chrono::microseconds(300));
+      ids[p] = std::this_thread::get_id();
+    });
+    EXPECT_EQ(ids[0], std::this_thread::get_id());
+    on_worker += ids[1] != std::this_thread::get_id();
+  }
+  // A worker that is not scheduled in time leaves its part to the caller; most jobs are split.
+  EXPECT_GT(on_worker, 100);
+}
+
+TEST(WorkerTeam, APartNoWorkerStartedIsRunByTheCaller) {
+  WorkerTeam team(2);
+  // Between these jobs the worker has gone to sleep (it spins about 50 us); waking it takes
+  // longer than the caller's empty part 0, so the caller takes part 1 itself rather than wait.
+  int by_caller = 0;
+  for (int job = 0; job < 50; ++job) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::thread::id runner;
+    std::atomic<int> runs{0};
+    team.run([&](unsigned p) {
+      runs.fetch_add(1);
+      if (p == 1) runner = std::this_thread::get_id();
+    });
+    ASSERT_EQ(runs.load(), 2);
+    by_caller += runner == std::this_thread::get_id();
+  }
+  EXPECT_GT(by_caller, 0);
+  // The worker, woken late, finds its part taken and leaves the next jobs whole.
+  for (int job = 0; job < 1000; ++job) {
+    std::atomic<int> runs{0};
+    team.run([&](unsigned) { runs.fetch_add(1); });
+    ASSERT_EQ(runs.load(), 2);
+  }
+}
+
+TEST(WorkerTeam, AJobStartedInsideAPartRunsInline) {
+  WorkerTeam team(2);
+  std::atomic<int> inner{0};
+  std::thread::id inner_threads[2][2];
+  team.run([&](unsigned p) {
+    team.run([&](unsigned q) {
+      inner.fetch_add(1);
+      inner_threads[p][q] = std::this_thread::get_id();
+    });
+    // Both inner parts ran on the thread of the outer part that started them.
+    EXPECT_EQ(inner_threads[p][0], std::this_thread::get_id());
+    EXPECT_EQ(inner_threads[p][1], std::this_thread::get_id());
+  });
+  EXPECT_EQ(inner.load(), 4);
+}
+
+TEST(Executor, SideBySideRunsBothAndChunksCoverTheRangeOnce) {
+  for (int threads : {1, 2, 3}) {
+    Executor exec(threads);
+    std::vector<int> hits(10'000, 0);
+    exec.for_chunks(hits.size(), 512, [&](std::size_t begin, std::size_t end) {
+      EXPECT_EQ(begin % 512, 0u);
+      for (std::size_t i = begin; i < end; ++i)
+        ++hits[i];
+    });
+    for (std::size_t i = 0; i < hits.size(); ++i)
+      ASSERT_EQ(hits[i], 1) << i << " with " << threads << " threads";
+    int a = 0, b = 0;
+    exec.run_side_by_side([&] { ++a; }, [&] { ++b; });
+    EXPECT_EQ(a, 1);
+    EXPECT_EQ(b, 1);
+  }
+}
+
+}  // namespace
+}  // namespace imasim::physics
