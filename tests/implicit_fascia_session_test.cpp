@@ -33,7 +33,7 @@ TEST(ImplicitFasciaSession, TheExampleSessionCutsWithTheToolsAndTheFasciaInOneSo
   EXPECT_EQ(out["status"], "ok");
   EXPECT_EQ(out["fascia_solver"], "implicit");
   const double steps = out["steps"].get<double>();
-  // The cuts go through (the XPBD fascia: 1207 edges, 31 strands).
+  // The cuts go through (the XPBD fascia: 1215 edges, 31 strands).
   EXPECT_GT(out["fascia_edges_cut"].get<int>(), 700);
   EXPECT_GT(out["strands_cut"].get<int>(), 25);
   // A handful of particles put out of a tool over the run, not one a step.

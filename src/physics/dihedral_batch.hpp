@@ -88,10 +88,17 @@ inline void project_dihedral_batch(const DihedralRow* rows, Real* lambda,
     lambda[k] = lam[k];
     if (!valid[k]) continue;
     const DihedralRow& r = rows[k];
-    x[r.p[0]] += w0[k] * Vec3(d0.x[k], d0.y[k], d0.z[k]);
-    x[r.p[1]] += w1[k] * Vec3(d1.x[k], d1.y[k], d1.z[k]);
-    x[r.p[2]] += w2[k] * Vec3(u2.x[k], u2.y[k], u2.z[k]);
-    x[r.p[3]] -= w3[k] * Vec3(u3.x[k], u3.y[k], u3.z[k]);
+    // Written out per component (the same arithmetic as x += w * Vec3(...)): GCC stopped
+    // inlining Eigen's loop for that here once step.cpp grew, a call per row that made the
+    // cloth's step 28 % slower (docs/PERFORMANCE.md).
+    Real* x0 = x[r.p[0]].data();
+    Real* x1 = x[r.p[1]].data();
+    Real* x2 = x[r.p[2]].data();
+    Real* x3 = x[r.p[3]].data();
+    x0[0] += w0[k] * d0.x[k], x0[1] += w0[k] * d0.y[k], x0[2] += w0[k] * d0.z[k];
+    x1[0] += w1[k] * d1.x[k], x1[1] += w1[k] * d1.y[k], x1[2] += w1[k] * d1.z[k];
+    x2[0] += w2[k] * u2.x[k], x2[1] += w2[k] * u2.y[k], x2[2] += w2[k] * u2.z[k];
+    x3[0] -= w3[k] * u3.x[k], x3[1] -= w3[k] * u3.y[k], x3[2] -= w3[k] * u3.z[k];
   }
 }
 
