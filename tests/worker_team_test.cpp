@@ -37,9 +37,18 @@ TEST(WorkerTeam, TheCallerRunsPartZeroAndAWorkerTheOthersWhenItIsFree) {
   int on_worker = 0;
   for (int job = 0; job < 200; ++job) {
     std::thread::id ids[2];
-    // Part 0 waits long enough for the worker to claim part 1 (it spins between jobs).
+    std::atomic<bool> claimed{false};
+    // Part 0 waits until part 1 has started, or 50 ms: on a loaded machine (the tests run two
+    // at a time) the worker may wait a time slice or more for a core, and a fixed short wait
+    // would leave its part to the caller.
     team.run([&](unsigned p) {
-      if (p == 0) std::this_thread::sleep_for(std::chrono::microseconds(300));
+      if (p == 0) {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+        while (!claimed.load() && std::chrono::steady_clock::now() < deadline)
+          std::this_thread::sleep_for(std::chrono::microseconds(50));
+      } else {
+        claimed.store(true);
+      }
       ids[p] = std::this_thread::get_id();
     });
     EXPECT_EQ(ids[0], std::this_thread::get_id());
