@@ -49,7 +49,8 @@ ASAN_SKIP_TESTS = TheExampleScriptOpensGraspsCutsAndCoagulates ACutOpensAsTheXpb
 	StaticHeartTransmitsNoMotion HeartMotionReachesTheImaAndFallsWithDistance \
 	AHoldOnAProxyStoppedByASurfaceStaysOnTheProxy AProxysContactDragsTheFasciaAlongByItsFriction \
 	ASheetOnAHeavingPlaneConvergesInAFewIterationsAStep \
-	PressingFiveMillimetresRestsOnTheSurfaceAndTheCouplingCarriesTheTissuesPush
+	PressingFiveMillimetresRestsOnTheSurfaceAndTheCouplingCarriesTheTissuesPush \
+	TheFasciaLaidOnItsFatSinksItsWeightOverItsColumns
 empty :=
 space := $(empty) $(empty)
 ASAN_SKIP = $(subst $(space),|,$(strip $(ASAN_SKIP_TESTS)))

@@ -255,6 +255,13 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
     phi += Real(0.5) * body_stop_k_ * g * g;
     gradient.segment<3>(3 * (free_rows + r.body)) += body_stop_k_ * g * r.normal;
   }
+  for (const MembraneSupport& c : loads.supports) {
+    const std::uint32_t a = free_index_[c.vertex];
+    const Real g = c.normal.dot(x[c.vertex] - c.point);
+    if (a == kFixed || (c.pushes_only && g >= 0)) continue;
+    phi += Real(0.5) * c.stiffness * g * g;
+    gradient.segment<3>(3 * a) += (c.stiffness * g) * c.normal;  // d/dx of k/2 g^2 (unit: N)
+  }
   for (const MembraneAttachment& h : loads.attachments) {
     Vec3 target = h.target;
     if (h.body != kNoMembraneBody) target += bx[h.body] - body_start_[h.body];
@@ -331,6 +338,11 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
   for (const MembraneBodyStop& r : loads.body_stops)
     if (body_stop_gap(r, bx) < 0)
       add(body_diagonal_[r.body], body_stop_k_ * r.normal * r.normal.transpose(), 1);
+  for (const MembraneSupport& c : loads.supports) {
+    const std::uint32_t a = free_index_[c.vertex];
+    if (a != kFixed && (!c.pushes_only || c.normal.dot(x[c.vertex] - c.point) < 0))
+      add(diagonal_[a], c.stiffness * c.normal * c.normal.transpose(), 1);
+  }
   for (const MembraneAttachment& h : loads.attachments) {
     const Mat3 k = h.stiffness * Mat3::Identity();
     const std::uint32_t a = free_index_[h.vertex];
@@ -435,6 +447,10 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       throw std::invalid_argument("implicit membrane: attachment " + std::to_string(k) +
                                   " names a vertex or a body out of range, or has no stiffness");
   }
+  for (std::size_t k = 0; k < loads.supports.size(); ++k)
+    if (loads.supports[k].vertex >= mass_.size() || !(loads.supports[k].stiffness > 0))
+      throw std::invalid_argument("implicit membrane: support " + std::to_string(k) +
+                                  " names a vertex out of range, or has no stiffness");
   for (std::size_t k = 0; k < loads.body_stops.size(); ++k)
     if (loads.body_stops[k].body >= body_count_)
       throw std::invalid_argument("implicit membrane: body stop " + std::to_string(k) +

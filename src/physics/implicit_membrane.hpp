@@ -141,6 +141,16 @@ struct MembraneBodyStop {
 };
 
 // What acts on the membrane during one step besides its springs.
+// A column holding a vertex to a fixed base (the fat under the fascia, physics/support_row.hpp):
+// energy k/2 g^2, g = n . (x - point), or k/2 min(g, 0)^2 if it pushes only.
+struct MembraneSupport {
+  std::uint32_t vertex = 0;
+  Vec3 point = Vec3::Zero();    // on the column's plane at rest (unit: m)
+  Vec3 normal = Vec3::UnitY();  // unit, away from the base
+  Real stiffness = 0;           // k (unit: N/m)
+  bool pushes_only = true;
+};
+
 struct ImplicitLoads {
   Vec3 gravity = Vec3::Zero();                // (unit: m/s^2)
   std::span<const Vec3> force;                // per vertex (unit: N), or empty
@@ -148,6 +158,7 @@ struct ImplicitLoads {
   std::span<MembraneBody> bodies;             // as many as the solver was made for
   std::span<const MembraneAttachment> attachments = {};
   std::span<const MembraneBodyStop> body_stops = {};
+  std::span<const MembraneSupport> supports = {};
 };
 
 struct ImplicitSolveParams {

@@ -12,6 +12,7 @@
 #include "physics/model.hpp"
 #include "physics/particles.hpp"
 #include "physics/proxy_body.hpp"
+#include "physics/support_row.hpp"
 
 namespace imasim::physics {
 
@@ -38,6 +39,7 @@ struct StepScratch {
   // Contact, follow and body attachment rows are ordered band 0 first at the start of a step; band
   // 1 starts here.
   std::size_t contact_split = 0, follow_split = 0, body_attachment_split = 0;
+  std::size_t support_split = 0;  // the same for the support rows
   // The two bands run side by side over each group of substeps (a coarse substep and the fine
   // ones it spans): per follow row, whether its source is in the other band than its
   // destination, and that source as the group began, which such a row reads instead.
@@ -65,7 +67,10 @@ struct State {
   // added back at the next step's start, so its dynamics are the strided scheme's exactly.
   std::vector<Vec3> velocity_offset;  // (unit: m/s); 0 for coarse and fixed particles
   std::vector<FollowRow> follows;     // refreshed before each step by the couplings' owner
-  double time = 0;                    // (unit: s)
+  // Columns holding particles off a fixed base (support_row.hpp); gathered before each step by
+  // their owner (tissue/fat_support.hpp).
+  std::vector<SupportRow> supports;
+  double time = 0;  // (unit: s)
   std::uint64_t step_count = 0;
   StepScratch scratch;
 };

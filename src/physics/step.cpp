@@ -194,6 +194,11 @@ void order_rows_by_band(const Model& model, State& state) {
       std::partition(contacts.begin(), contacts.end(),
                      [&](const ContactRow& c) { return fine(c.particle); }) -
       contacts.begin());
+  auto& supports = state.supports;
+  state.scratch.support_split = static_cast<std::size_t>(
+      std::partition(supports.begin(), supports.end(),
+                     [&](const SupportRow& r) { return fine(r.particle); }) -
+      supports.begin());
   auto& held = state.body_attachments;
   state.scratch.body_attachment_split = static_cast<std::size_t>(
       std::partition(held.begin(), held.end(),
@@ -228,6 +233,11 @@ std::span<Row> band_rows(std::vector<Row>& rows, std::size_t split, std::uint32_
 void project_contacts(State& state, std::span<ProxyBody> proxies, std::uint32_t band, Real tau0,
                       Real tau1, Real h, Real pushed) {
   Particles& P = state.particles;
+  // The columns under the tissue first: a contact, hard, has the last word.
+  for (SupportRow& r : band_rows(state.supports, state.scratch.support_split, band)) {
+    IMASIM_ASSERT(r.particle < P.size());
+    project_support(r, P.predicted.data(), P.inverse_mass.data(), h);
+  }
   for (ContactRow& c : band_rows(state.contacts.rows, state.scratch.contact_split, band)) {
     const Real allowance = overlap_allowance(c, pushed);
     if (c.body == kNoBody) {
@@ -323,6 +333,8 @@ void reset_contact_depths(State& state, std::uint32_t band) {
   for (BodyAttachmentRow& r :
        band_rows(state.body_attachments, state.scratch.body_attachment_split, band))
     r.lambda = Vec3::Zero();
+  for (SupportRow& r : band_rows(state.supports, state.scratch.support_split, band))
+    r.lambda = 0;
   if (band != 0) return;
   for (BodyStopRow& r : state.body_stops) {  // the bodies move in the fine substeps
     r.depth = 0;
@@ -418,6 +430,8 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   }
   for (BodyAttachmentRow& r : state.body_attachments)
     r.impulse = Vec3::Zero();
+  for (SupportRow& r : state.supports)
+    r.impulse = 0;
   measure_start_depths(state);
   for (ProxyBody& b : state.proxies) {
     keep_proxy_finite(b);

@@ -131,6 +131,12 @@ std::string validate_state(const Model& model, State& state) {
     if (r.body >= state.proxies.size()) return "a body's attachment refers to a missing proxy body";
     if (!r.target.allFinite() || !(r.compliance >= 0)) return "a body's attachment is not finite";
   }
+  for (const SupportRow& r : state.supports) {
+    if (r.particle >= state.particles.size()) return "a support refers to a missing particle";
+    if (!r.normal.allFinite() || !std::isfinite(r.offset) || !(r.compliance > 0) ||
+        !std::isfinite(r.compliance))
+      return "a support is not finite or has no stiffness";
+  }
   for (const FollowRow& f : state.follows) {
     if (f.source >= state.particles.size() || f.destination >= state.particles.size()) {
       return "a coupling row refers to a missing particle";

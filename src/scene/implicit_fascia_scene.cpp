@@ -6,6 +6,7 @@
 
 #include "physics/damping.hpp"
 #include "scene/thorax_scene.hpp"
+#include "tissue/fat_support.hpp"
 
 namespace imasim::scene {
 
@@ -220,6 +221,7 @@ void use_implicit_fascia(ThoraxScene& scene, const physics::StiffeningMembrane& 
   f.attachments.reserve(mesh.particle_capacity);
   f.attachment_pull.reserve(mesh.particle_capacity);
   f.body_stops.reserve(w.state.body_stops.capacity());
+  f.supports.reserve(w.state.supports.capacity());
   f.inverse_mass.reserve(mesh.particle_capacity);
   f.velocity.reserve(mesh.particle_capacity);
   f.coagulated.reserve(mesh.particle_capacity);
@@ -272,8 +274,18 @@ physics::StepResult step_scene_fascia(ThoraxScene& scene) {
   std::erase_if(w.state.contacts.rows, fixed_plane);
   const std::size_t fixed_planes = f.contacts.size();
   gather_instruments(w, f, first, end);
-  f.last = tissue::step_implicit_fascia(f.fascia, w, w.model.objects[mesh.object].gravity,
-                                        f.contacts, f.bodies, f.solve, f.attachments, f.body_stops);
+  // The fat's columns under the fascia (the XPBD step gathers its own after, the fascia then
+  // kinematic in it).
+  tissue::gather_fat_supports(w);
+  f.supports.clear();
+  for (const physics::SupportRow& r : w.state.supports) {
+    if (r.particle < first || r.particle >= end) continue;
+    f.supports.push_back(
+        {r.particle - first, r.offset * r.normal, r.normal, 1 / r.compliance, r.pushes_only});
+  }
+  f.last =
+      tissue::step_implicit_fascia(f.fascia, w, w.model.objects[mesh.object].gravity, f.contacts,
+                                   f.bodies, f.solve, f.attachments, f.body_stops, f.supports);
   load_proxies(w, f, first, fixed_planes);
   keep_pressed(f);
   damp_fascia(w, mesh);

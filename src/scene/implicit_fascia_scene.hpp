@@ -59,6 +59,7 @@ struct SceneImplicitFascia {
   std::vector<Real> tool_depth;  // how deep each tool row's vertex ended inside (unit: m)
   std::vector<physics::MembraneAttachment> attachments;
   std::vector<physics::MembraneBodyStop> body_stops;  // the proxies' at the heart and the wall
+  std::vector<physics::MembraneSupport> supports;     // the fat's columns under the fascia
   std::vector<Vec3> attachment_pull;                  // on the body, each (unit: N)
   std::vector<physics::MembraneBody> bodies;          // one per proxy
   std::vector<Vec3> force_on_body;    // the fascia's push and pull on each (unit: N)

@@ -38,7 +38,8 @@ physics::ImplicitStepReport step_implicit_fascia(
     std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
     const physics::ImplicitSolveParams& params,
     std::span<const physics::MembraneAttachment> attachments,
-    std::span<const physics::MembraneBodyStop> body_stops) {
+    std::span<const physics::MembraneBodyStop> body_stops,
+    std::span<const physics::MembraneSupport> supports) {
   const MeshObject& object = world.meshes[fascia.mesh];
   physics::Particles& particles = world.state.particles;
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
@@ -46,7 +47,8 @@ physics::ImplicitStepReport step_implicit_fascia(
     fascia.v[k] = particles.velocity[object.first_particle + k];
   }
   const physics::ImplicitStepReport report = fascia.membrane->step(
-      fascia.x, fascia.v, {gravity, {}, contacts, bodies, attachments, body_stops}, params);
+      fascia.x, fascia.v, {gravity, {}, contacts, bodies, attachments, body_stops, supports},
+      params);
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
     const std::uint32_t p = object.first_particle + k;
     if (particles.inverse_mass[p] == 0) continue;

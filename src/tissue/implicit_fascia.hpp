@@ -37,6 +37,7 @@ physics::ImplicitStepReport step_implicit_fascia(
     std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
     const physics::ImplicitSolveParams& params,
     std::span<const physics::MembraneAttachment> attachments = {},
-    std::span<const physics::MembraneBodyStop> body_stops = {});
+    std::span<const physics::MembraneBodyStop> body_stops = {},
+    std::span<const physics::MembraneSupport> supports = {});
 
 }  // namespace imasim::tissue

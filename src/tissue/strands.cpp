@@ -99,6 +99,11 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   const physics::MaterialId material =
       world.model.add_material(physics::ConstraintMaterial::xpbd(1 / p.youngs_modulus));
   const MeshObject& source = world.meshes[mesh_a];
+  const MeshObject& base = world.meshes[mesh_b];
+  bool base_fixed = true;
+  for (std::uint32_t k = 0; k < base.particle_count; ++k)
+    base_fixed = base_fixed && P.inverse_mass[base.first_particle + k] == 0;
+  const bool columns = p.resists_compression && base_fixed;
   for (const GeneratedStrand& g : gen.strands) {
     const geometry::Triangle& face = source.triangles[g.face_a];
     const Real cross_section = physics::rest_triangle_area(P, source.first_particle, face) /
@@ -113,6 +118,12 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
             world.state.constraints, P, i - 1, i, material, segment_length / cross_section));
       }
       set.diameter.push_back(p.diameter);
+    }
+    if (columns) {
+      // The whole strand's stiffness, its n segments in series: E A_s / L (unit: N/m).
+      const Real length = (g.start - g.end).norm();
+      set.column_stiffness.push_back(length > 0 ? p.youngs_modulus * cross_section / length : 0);
+      set.column_direction.push_back(length > 0 ? Vec3((g.start - g.end) / length) : Vec3::Zero());
     }
     set.end_a.push_back({g.face_a, g.bary_a, 0});
     set.end_b.push_back({g.face_b, g.bary_b, 0});

@@ -29,6 +29,12 @@ struct StrandSetParams {
   // fell away would otherwise be stretched tens of times, its particles jittering metres a second
   // until the step's speed guard stops the run.
   Real tear_stretch = Real(3);
+  // The fat holds what it binds and pushes back when compressed towards mesh_b (a base whose
+  // particles are all fixed): each strand is also a column of its share of the layer, E A_s / L
+  // (fat_support.hpp). Off (the default until the scene is refitted to it, docs/physics.md): the
+  // strands are chains whose ends ride on their surfaces, which buckle when pushed along their
+  // length.
+  bool resists_compression = false;
   Real xsph_coefficient = Real(0.3);  // share of the neighbours' mean velocity taken per step
   Real xsph_radius = Real(4e-3);      // neighbourhood at rest (unit: m)
 };

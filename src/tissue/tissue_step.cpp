@@ -7,6 +7,7 @@
 #include "geometry/vertex_normals.hpp"
 #include "math/stopwatch.hpp"
 #include "physics/validation.hpp"
+#include "tissue/fat_support.hpp"
 #include "tissue/mesh_object.hpp"
 #include "tissue/strands.hpp"
 #include "tissue/xsph.hpp"
@@ -41,6 +42,9 @@ void finish_setup(TissueWorld& world) {
   world.manipulated.resize(world.state.particles.size(), 0);
   // Contacts are gathered every step: room for two per particle, so stepping does not allocate.
   world.state.contacts.rows.reserve(2 * world.state.particles.size());
+  world.state.supports.reserve(2 * world.state.particles.size());
+  world.support_stiffness.assign(world.state.particles.size(), 0);
+  world.support_direction.assign(world.state.particles.size(), Vec3::Zero());
   std::size_t pairs = 0;
   for (const OffsetCoupling& c : world.couplings)
     pairs += c.pairs.size();
@@ -78,6 +82,7 @@ physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& 
   world.state.follows.clear();
   for (const OffsetCoupling& c : world.couplings)
     append_follow_rows(c, world.state.particles, world.reference, flags, world.state.follows);
+  gather_fat_supports(world);
   const double follow_rows = clock.lap();
   physics::StepResult r = physics::step(world.model, world.state, exec);
   clock.lap();

@@ -93,6 +93,12 @@ struct StrandSet {
   std::vector<std::uint32_t> pair_start, pair_lower, pair_upper;
   Real xsph_coefficient = 0;
   Real xsph_radius = 0;  // (unit: m)
+  // The fat a strand stands for pushes back when compressed (fat_support.hpp), against a base
+  // that does not move (mesh_b's particles all fixed): per strand, its column's stiffness E A_s /
+  // L (unit: N/m) and its direction at rest, from its end on mesh_b to its end on mesh_a (unit).
+  // Empty when the set has no such columns.
+  std::vector<Real> column_stiffness;
+  std::vector<Vec3> column_direction;
 
   std::uint32_t particle_count() const { return strand_count * (segments + 1); }
   std::uint32_t particle(std::uint32_t strand, std::uint32_t k) const {
@@ -120,6 +126,10 @@ struct TissueWorld {
   // Per particle, refreshed each step from `held`: of a strand a held particle belongs to. Such
   // fat drives the surfaces it is coupled to (eq. 9's beta, coupling.hpp).
   std::vector<std::uint8_t> manipulated;
+  // Per particle, while the fat's columns are gathered (fat_support.hpp): the stiffness and the
+  // stiffness-weighted direction of the columns under it. Sized at set-up, left zero.
+  std::vector<Real> support_stiffness;
+  std::vector<Vec3> support_direction;
 };
 
 }  // namespace imasim::tissue
