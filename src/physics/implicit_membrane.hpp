@@ -140,7 +140,6 @@ struct MembraneBodyStop {
   Real gap0 = 0;                // the gap with the body where the step starts (unit: m)
 };
 
-// What acts on the membrane during one step besides its springs.
 // A column holding a vertex to a fixed base (the fat under the fascia, physics/support_row.hpp):
 // energy k/2 g^2, g = n . (x - point), or k/2 min(g, 0)^2 if it pushes only.
 struct MembraneSupport {
@@ -151,6 +150,7 @@ struct MembraneSupport {
   bool pushes_only = true;
 };
 
+// What acts on the membrane during one step besides its springs.
 struct ImplicitLoads {
   Vec3 gravity = Vec3::Zero();                // (unit: m/s^2)
   std::span<const Vec3> force;                // per vertex (unit: N), or empty

@@ -59,7 +59,7 @@ constexpr std::array<std::string_view, 2> kFasciaSolvers = {kXpbdFasciaSolver,
                "a strand tears with its ends this many times their rest distance apart"},         \
       SceneKey{table ".resists_compression",                                                      \
                BoolRef([](Params& p) { return &p.patch.member.resists_compression; }), 0, 0,      \
-               "the fat pushes back when pressed towards the wall (its strands as columns)"},     \
+               "the fat holds what it binds and pushes back (its strands as columns)"},           \
       SceneKey{table ".xsph_coefficient",                                                         \
                RealRef([](Params& p) { return &p.patch.member.xsph_coefficient; }), 0, 1,         \
                "share of the neighbours' mean velocity taken per step (XSPH)"},                   \

@@ -103,7 +103,12 @@ std::uint32_t add_strands(TissueWorld& world, std::uint32_t mesh_a, std::uint32_
   bool base_fixed = true;
   for (std::uint32_t k = 0; k < base.particle_count; ++k)
     base_fixed = base_fixed && P.inverse_mass[base.first_particle + k] == 0;
-  const bool columns = p.resists_compression && base_fixed;
+  if (p.resists_compression && !base_fixed) {
+    throw std::invalid_argument(p.name +
+                                ": resists_compression needs a base that does not move (every "
+                                "particle of the second mesh fixed)");
+  }
+  const bool columns = p.resists_compression;
   for (const GeneratedStrand& g : gen.strands) {
     const geometry::Triangle& face = source.triangles[g.face_a];
     const Real cross_section = physics::rest_triangle_area(P, source.first_particle, face) /

@@ -93,10 +93,9 @@ struct StrandSet {
   std::vector<std::uint32_t> pair_start, pair_lower, pair_upper;
   Real xsph_coefficient = 0;
   Real xsph_radius = 0;  // (unit: m)
-  // The fat a strand stands for pushes back when compressed (fat_support.hpp), against a base
-  // that does not move (mesh_b's particles all fixed): per strand, its column's stiffness E A_s /
-  // L (unit: N/m) and its direction at rest, from its end on mesh_b to its end on mesh_a (unit).
-  // Empty when the set has no such columns.
+  // The fat a strand stands for as a column to its base, which does not move (fat_support.hpp):
+  // per strand, its stiffness E A_s / L (unit: N/m) and its direction at rest, from its end on
+  // mesh_b to its end on mesh_a (unit vector). Empty when the set has no columns.
   std::vector<Real> column_stiffness;
   std::vector<Vec3> column_direction;
 
@@ -126,8 +125,9 @@ struct TissueWorld {
   // Per particle, refreshed each step from `held`: of a strand a held particle belongs to. Such
   // fat drives the surfaces it is coupled to (eq. 9's beta, coupling.hpp).
   std::vector<std::uint8_t> manipulated;
-  // Per particle, while the fat's columns are gathered (fat_support.hpp): the stiffness and the
-  // stiffness-weighted direction of the columns under it. Sized at set-up, left zero.
+  // Per particle, while the fat's columns are gathered (fat_support.hpp): the stiffness of the
+  // columns under it (unit: N/m) and their stiffness-weighted direction (unit: N/m). Sized at
+  // set-up, left zero.
   std::vector<Real> support_stiffness;
   std::vector<Vec3> support_direction;
 };
