@@ -39,11 +39,12 @@ struct SolverParams {
   // membrane reads soft by about (c h / l)^2, c its wave speed and l its edge, which a further
   // sweep mostly takes away for the price of these rows alone (docs/physics.md). 1 = one sweep.
   std::uint32_t stretch_sweeps = 1;
-  // Sweeps per iteration of the coarse band (its rows but bending, its follow rows, contacts and
-  // held particles) in each coarse substep, lambdas accumulating. The coarse substep is
-  // coarse_stride times longer, so one sweep leaves the strands (c h_c / l)^2 soft, coarse_stride^2
-  // times what it leaves the fine band: a strand pulled by the grasp read 16 % soft at 8 coarse
-  // substeps of one sweep (docs/physics.md). 1 = one sweep.
+  // Sweeps per iteration of the coarse band in each coarse substep, lambdas accumulating: the
+  // first over all its rows (bending too), the further ones over the rows of the particles acted
+  // on from outside (contacts, held particles, columns: active_rows.hpp), each with the band's
+  // follow rows, contacts and held particles. The coarse substep is coarse_stride times longer,
+  // so one sweep leaves the strands (c h_c / l)^2 soft where a tool pulls them: a strand pulled
+  // by the grasp read 16 % soft at 8 coarse substeps of one sweep (docs/physics.md). 1 = one.
   std::uint32_t coarse_sweeps = 1;
 
   std::uint32_t effective_coarse_stride() const;

@@ -31,6 +31,7 @@ void prepare_state(const Model& model, State& state) {
   // Chunks of the per-object passes: each object's range is chunked on its own.
   grow(s.block_first_bad, (n + kParticleBlock - 1) / kParticleBlock + model.objects.size());
   grow(s.validation_stamp, n);
+  prepare_active_rows(state, s.coarse_active);
 }
 
 std::uint64_t position_hash(const State& state) {

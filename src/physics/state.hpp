@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "physics/active_rows.hpp"
 #include "physics/body_attachment.hpp"
 #include "physics/body_stop.hpp"
 #include "physics/constraint_system.hpp"
@@ -48,6 +49,8 @@ struct StepScratch {
   // The proxies as the group began, and the coarse band's copy of them, which its contacts move;
   // what they moved it by is added to the proxies when the bands join.
   std::vector<ProxyBody> group_proxies, coarse_proxies;
+  // The coarse band's rows that its further sweeps visit, found once a step (active_rows.hpp).
+  ActiveRows coarse_active;
 };
 
 struct State {

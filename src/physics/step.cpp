@@ -155,6 +155,23 @@ void project_store(ColouredStore<Row>& store, std::uint32_t band, const Projecti
   }
 }
 
+// A further sweep of the coarse band: its rows near what acts on it from outside
+// (active_rows.hpp), in projection order, serially.
+void project_active_rows(ConstraintSystem& cs, const ActiveRows& active,
+                         const ProjectionContext& ctx) {
+  auto distance = cs.distance.groups();
+  for (std::size_t k = 0; k < active.distance_count; ++k) {
+    const RowRef r = active.distance[k];
+    project_distance(distance[r.group].rows[r.position], distance[r.group].lambda[r.position], ctx);
+  }
+  auto attachment = cs.attachment.groups();
+  for (std::size_t k = 0; k < active.attachment_count; ++k) {
+    const RowRef r = active.attachment[k];
+    project_attachment(attachment[r.group].rows[r.position], attachment[r.group].lambda[r.position],
+                       ctx);
+  }
+}
+
 constexpr auto kNoBatch = [](const auto*, auto*, const ProjectionContext&) {};
 static_assert(kConstraintChunk % kDihedralBatch == 0);
 
@@ -422,6 +439,7 @@ StepResult step(const Model& model, State& state, Executor& exec) {
   }
   begin_step(model, state);
   order_rows_by_band(model, state);
+  if (solver.coarse_sweeps > 1) find_active_rows(state, 1, scratch.coarse_active);
   for (ContactRow& c : state.contacts.rows)
     c.normal_impulse = 0;
   for (BodyStopRow& r : state.body_stops) {
@@ -532,7 +550,10 @@ StepResult step(const Model& model, State& state, Executor& exec) {
       // coarse_sweeps sweeps, lambdas accumulating, its bending once: its substep is
       // coarse_stride times the fine one, and so is its softness squared.
       for (std::uint32_t sweep = 0; sweep < solver.coarse_sweeps; ++sweep) {
-        project_band(cs, 1, coarse, sweep == 0 ? &coarse : nullptr, exec);
+        if (sweep == 0)
+          project_band(cs, 1, coarse, &coarse, exec);
+        else
+          project_active_rows(cs, scratch.coarse_active, coarse);
         project_follows(state, 1);
         project_contacts(state, scratch.coarse_proxies, 1, tau0, tau1, plan.coarse_h, pushed);
       }
