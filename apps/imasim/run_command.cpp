@@ -64,7 +64,7 @@ constexpr double kMaxRunSeconds = 3600;
 constexpr double kMaxRunSteps = 4e6;
 // As the scene file's anatomy.patient_seed (scene_keys.cpp).
 // Runs estimated to take longer than this get a note on stderr before they start, with the cost
-// of one particle sweep measured on the reference machine (docs/PERFORMANCE.md: 20-80 ns).
+// of one particle sweep measured on the reference machine (docs/PERFORMANCE.md: 14-106 ns).
 constexpr double kAnnouncedRunSeconds = 60;
 constexpr double kSecondsPerParticleSweep = 30e-9;
 constexpr std::uint64_t kMaxPatientSeed = 9'000'000'000'000'000'000u;
