@@ -4,8 +4,10 @@
 // act on the band from outside: the tools' contacts, the particles the proxies hold and the fat's
 // columns. There one sweep leaves the band soft (the grasp's pull, docs/physics.md), while the
 // rest of it, at rest or carried by its surfaces, reads the same after one sweep as after three.
-// So the further sweeps visit the rows within kActiveRings rows of such a particle, with the
-// contacts, follow rows and held particles as before (all of them: they are few).
+// So the further sweeps visit the rows of such particles only, with the band's contacts, follow
+// rows and held particles as before (all of them: they are few). Reaching further, to the rows
+// 2 or 4 rows away, was measured and read 6 % over the finer solve as the jaws close (a patch
+// converged against a boundary swept once acts stiff; docs/physics.md).
 #include <cstdint>
 #include <vector>
 
@@ -15,12 +17,6 @@ namespace imasim::physics {
 
 struct State;
 
-// How far from a seed particle (one touched from outside) the further sweeps reach, in rows:
-// 1, the rows of the seeds themselves. Measured on the grasp's pull (docs/physics.md): within
-// 2 % of 256 x 4 in every half-second with 1, while 2 and 4 rings read 6 % over it as the jaws
-// close (the sweeps converge a patch against a boundary swept once, which then acts stiff).
-inline constexpr std::uint32_t kActiveRings = 1;
-
 // A row of a coloured store by its group and its place there (rows do not move within a step).
 struct RowRef {
   std::uint32_t group = 0, position = 0;
@@ -28,7 +24,7 @@ struct RowRef {
 
 // The further sweeps' rows of one band, in projection order (colours, then the overflow group).
 struct ActiveRows {
-  std::vector<std::uint8_t> ring;  // per particle: 0 = not reached, else 1 + rows from a seed
+  std::vector<std::uint8_t> touched;  // per particle: acted on from outside this step
   std::vector<RowRef> distance, attachment;
   std::size_t distance_count = 0, attachment_count = 0;
 };
@@ -36,9 +32,8 @@ struct ActiveRows {
 // Sizes the buffers for the state's particles and rows (allocates only when they grew).
 void prepare_active_rows(const State& state, ActiveRows& active);
 
-// Finds `band`'s rows within kActiveRings of its contacts', held particles' and support rows'
-// particles. The rows of contacts, held particles and supports must be ordered by band
-// (step.cpp's order_rows_by_band). Deterministic: rings grow one row at a time, in row order.
+// Finds `band`'s distance and attachment rows with a particle in one of its contacts, held
+// particles or support rows. Those rows must be ordered by band (step.cpp's order_rows_by_band).
 void find_active_rows(State& state, std::uint32_t band, ActiveRows& active);
 
 }  // namespace imasim::physics
