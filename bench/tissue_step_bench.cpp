@@ -2,12 +2,15 @@
 // IMA and fascia fat strands, chest wall, couplings), on 1 or 2 threads.
 // BM_StrandGeneration: generating the fascia-to-wall strands of that patch.
 // BM_StrandTearCheck: the session's per-step check of that patch's strands for tearing, none torn.
+// BM_StrandSmoothing: the XSPH smoothing of that patch's strands (once a step), on 1 or 2
+// threads.
 #include <benchmark/benchmark.h>
 
 #include "physics/executor.hpp"
 #include "tissue/strand_tear.hpp"
 #include "tissue/thoracic_patch.hpp"
 #include "tissue/tissue_step.hpp"
+#include "tissue/xsph.hpp"
 
 namespace {
 
@@ -67,5 +70,25 @@ void BM_StrandGeneration(benchmark::State& bench) {
   bench.counters["strands"] = static_cast<double>(strands);
 }
 BENCHMARK(BM_StrandGeneration)->Unit(benchmark::kMillisecond);
+
+void BM_StrandSmoothing(benchmark::State& bench) {
+  tissue::ThoracicPatch patch =
+      tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
+  physics::Executor exec(static_cast<int>(bench.range(0)));
+  for (int n = 0; n < 20; ++n)  // the strands moving, as they are when smoothed
+    if (!tissue::step_tissue(patch.world, exec).ok()) bench.SkipWithError("step diverged");
+  std::size_t pairs = 0;
+  for (const tissue::StrandSet& set : patch.world.strands)
+    pairs += set.pair_lower.size();
+  for (auto _ : bench)
+    tissue::smooth_strand_velocities(patch.world, exec);
+  bench.counters["pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(BM_StrandSmoothing)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
 
 }  // namespace

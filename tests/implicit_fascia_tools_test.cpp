@@ -73,7 +73,7 @@ TEST(ImplicitFasciaTools, AProxysHoldLiftsTheFasciaAndTheFasciaPullsTheProxyBack
   physics::Executor exec(1);
   physics::StepProfile profile;
   for (int n = 0; n < 200; ++n) {  // 1 s
-    prepare_thorax_step(rig.scene, profile);
+    prepare_thorax_step(rig.scene, profile, exec);
     physics::ProxyBody& body = w.state.proxies[0];
     prepare_proxy(body);
     // The hold's target rides on the tool where its proxy begins the step (grasp.cpp).
@@ -108,7 +108,7 @@ TEST(ImplicitFasciaTools, AProxysContactPushesTheFasciaAndItsRowCarriesThePushBa
   physics::Executor exec(1);
   physics::StepProfile profile;
   for (int n = 0; n < 200; ++n) {
-    prepare_thorax_step(rig.scene, profile);
+    prepare_thorax_step(rig.scene, profile, exec);
     physics::ProxyBody& body = w.state.proxies[0];
     prepare_proxy(body);
     physics::ContactRow row;
@@ -160,7 +160,7 @@ Drag drag_along(Real mu) {
   physics::StepProfile profile;
   Vec3 pressed = Vec3::Zero();
   for (int n = 0; n < 200; ++n) {
-    prepare_thorax_step(rig.scene, profile);
+    prepare_thorax_step(rig.scene, profile, exec);
     physics::ProxyBody& body = w.state.proxies[0];
     prepare_proxy(body);
     const Real drawn0 = Real(0.001) * std::clamp(Real(n - 100) / 100, Real(0), Real(1));
@@ -213,7 +213,7 @@ TEST(ImplicitFasciaTools, AHoldOnAProxyStoppedByASurfaceStaysOnTheProxy) {
   physics::StepProfile profile;
   Real largest_stretch = 0;
   for (int n = 0; n < 200; ++n) {
-    prepare_thorax_step(rig.scene, profile);
+    prepare_thorax_step(rig.scene, profile, exec);
     physics::ProxyBody& body = w.state.proxies[0];
     prepare_proxy(body);
     w.state.body_attachments = {{rig.particle, 0, jaws + body.offset, Real(1e-6)}};

@@ -83,6 +83,87 @@ TEST(WorkerTeam, APartNoWorkerStartedIsRunByTheCaller) {
   }
 }
 
+// Kept awake (a step whose loops are parted by serial stretches), a worker does not sleep through
+// gaps far longer than its spin; let go, it sleeps again. (Its sleeps are counted, not timed: a
+// worker the machine does not schedule cannot sleep either, so the first half holds however
+// loaded the machine is, and the second waits as long as it takes.)
+// True once the worker, not the caller, ran part 1 of a job (the caller waits up to 50 ms for it).
+bool worker_ran_a_part(WorkerTeam& team) {
+  std::atomic<bool> started{false};
+  std::thread::id runner;
+  team.run([&](unsigned p) {
+    if (p == 1) {
+      started.store(true);
+      runner = std::this_thread::get_id();
+      return;
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+    while (!started.load() && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::microseconds(50));
+  });
+  return runner != std::this_thread::get_id();
+}
+
+TEST(WorkerTeam, AWorkerKeptAwakeSpinsThroughLongGapsAndSleepsOnceLetGo) {
+  WorkerTeam team(2);
+  team.keep_awake(true);
+  // Once the worker has run a job handed over after keep_awake, it has seen it: no sleep it
+  // decided on before can be counted from here.
+  bool ran = false;
+  for (int job = 0; job < 100 && !ran; ++job)
+    ran = worker_ran_a_part(team);
+  ASSERT_TRUE(ran);
+  const std::uint64_t before = team.sleeps();
+  for (int job = 0; job < 5; ++job) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));  // 40 times its spin
+    std::atomic<int> runs{0};
+    team.run([&](unsigned) { runs.fetch_add(1); });
+    ASSERT_EQ(runs.load(), 2);
+  }
+  EXPECT_EQ(team.sleeps(), before);
+  team.keep_awake(false);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (team.sleeps() == before && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_GT(team.sleeps(), before);
+}
+
+TEST(Executor, AwakeKeepsTheTeamAwakeForItsScope) {
+  Executor exec(2);
+  {
+    const Executor::Awake awake(exec);
+    // Until the worker has run a chunk handed over now, a sleep it decided on before may still be
+    // counted.
+    std::atomic<int> on_worker{0};
+    const std::thread::id caller = std::this_thread::get_id();
+    for (int job = 0; job < 100 && on_worker.load() == 0; ++job) {
+      std::atomic<bool> started{false};
+      exec.for_chunks(2, 1, [&](std::size_t begin, std::size_t) {
+        if (begin == 1) {
+          started.store(true);
+          on_worker += std::this_thread::get_id() != caller;
+          return;
+        }
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(50);
+        while (!started.load() && std::chrono::steady_clock::now() < deadline)
+          std::this_thread::sleep_for(std::chrono::microseconds(50));
+      });
+    }
+    ASSERT_GT(on_worker.load(), 0);
+    const std::uint64_t before = exec.worker_sleeps();
+    for (int job = 0; job < 3; ++job) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      std::atomic<int> chunks{0};
+      exec.for_chunks(4, 1, [&](std::size_t, std::size_t) { chunks.fetch_add(1); });
+      EXPECT_EQ(chunks.load(), 4);
+    }
+    EXPECT_EQ(exec.worker_sleeps(), before);
+  }
+  const Executor serial(1);
+  const Executor::Awake nothing(serial);  // no team: nothing to keep awake
+  EXPECT_EQ(serial.parts(), 1u);
+}
+
 TEST(WorkerTeam, AJobStartedInsideAPartRunsInline) {
   WorkerTeam team(2);
   std::atomic<int> inner{0};

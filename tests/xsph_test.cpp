@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "physics/executor.hpp"
 #include "precision.hpp"
 #include "tissue/strands.hpp"
 #include "tissue/thoracic_patch.hpp"
@@ -83,6 +84,52 @@ TEST(Xsph, PairsAreEveryInteriorPairWithinTheRadiusAtRestOnce) {
     EXPECT_EQ(set.pair_lower.size(), expected);
     EXPECT_GT(expected, std::size_t(count));  // the radius reaches across strands
   }
+}
+
+// The incoming lists: every pair once, under its upper particle, in ascending order (the order in
+// which a pass over the pairs from their lower particles reaches them).
+TEST(Xsph, IncomingListsHoldEachPairUnderItsUpperParticleInOrder) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  for (const StrandSet& set : patch.world.strands) {
+    SCOPED_TRACE(set.name);
+    ASSERT_EQ(set.incoming_start.size(), std::size_t(set.particle_count()) + 1);
+    ASSERT_EQ(set.incoming_pair.size(), set.pair_upper.size());
+    std::vector<int> seen(set.pair_upper.size(), 0);
+    for (std::uint32_t k = 0; k < set.particle_count(); ++k) {
+      for (std::uint32_t q = set.incoming_start[k]; q < set.incoming_start[k + 1]; ++q) {
+        const std::uint32_t p = set.incoming_pair[q];
+        ASSERT_EQ(set.pair_upper[p], k);
+        if (q > set.incoming_start[k]) {
+          ASSERT_LT(set.incoming_pair[q - 1], p);
+        }
+        ++seen[p];
+      }
+    }
+    for (const int n : seen)
+      ASSERT_EQ(n, 1);
+  }
+}
+
+// Several chunks of pairs and of particles (the fascia's fat: thousands of each), strands cut
+// among them: two threads give the velocities of one, bit for bit.
+TEST(Xsph, TwoThreadsSmoothAsOne) {
+  ThoracicPatch patch = make_thoracic_patch(default_thoracic_patch_params());
+  TissueWorld& w = patch.world;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<Real> u(-0.02, 0.02);  // (unit: m/s)
+  for (Vec3& v : w.state.particles.velocity)
+    v = Vec3(u(rng), u(rng), u(rng));
+  StrandSet& set = w.strands[patch.fascia_fat];
+  ASSERT_GT(set.pair_lower.size(), 8000u);
+  for (std::uint32_t k = 0; k < set.particle_count(); k += 97)  // removed by cuts
+    set.diameter[k] = 0;
+  TissueWorld other = w;
+  const std::vector<Vec3> before = w.state.particles.velocity;
+  const physics::Executor serial(1), pair(2);
+  smooth_strand_velocities(w, serial);
+  smooth_strand_velocities(other, pair);
+  EXPECT_EQ(w.state.particles.velocity, other.state.particles.velocity);
+  EXPECT_NE(w.state.particles.velocity, before);  // and the smoothing did act
 }
 
 TEST(Xsph, PullsAnOutlierTowardsItsNeighbours) {

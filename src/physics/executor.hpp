@@ -4,6 +4,7 @@
 // thread runs them, so a step gives bit-for-bit the same state for any thread count.
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 #include "physics/worker_team.hpp"
@@ -56,6 +57,46 @@ class Executor {
     }
     const std::size_t parts = team_->parts();
     team_->run([&](unsigned p) { run_chunks(chunks * p / parts, chunks * (p + 1) / parts); });
+  }
+
+  // Keeps the team's workers spinning while it lives (WorkerTeam::keep_awake): for a step whose
+  // parallel loops are parted by serial stretches of more than 50 us. Not nested.
+  class Awake {
+   public:
+    explicit Awake(const Executor& exec) : team_(exec.team_.get()) {
+      if (team_) team_->keep_awake(true);
+    }
+    ~Awake() {
+      if (team_) team_->keep_awake(false);
+    }
+    Awake(const Awake&) = delete;
+    Awake& operator=(const Awake&) = delete;
+
+   private:
+    WorkerTeam* team_;
+  };
+
+  // How many times the team's workers have gone to sleep (WorkerTeam::sleeps).
+  std::uint64_t worker_sleeps() const { return team_ ? team_->sleeps() : 0; }
+
+  // How many parts for_chunks_in_parts splits its work into (scratch to keep per part).
+  std::size_t parts() const { return team_ ? team_->parts() : 1; }
+
+  // for_chunks, telling body(part, begin, end) which part runs the chunk, in [0, parts()): each
+  // part may keep its own scratch. A part runs on one thread at a time, its chunks in order.
+  template <class Body>
+  void for_chunks_in_parts(std::size_t n, std::size_t chunk, const Body& body) const {
+    const std::size_t chunks = (n + chunk - 1) / chunk;
+    auto run_chunks = [&](std::size_t part, std::size_t c0, std::size_t c1) {
+      for (std::size_t c = c0; c < c1; ++c)
+        body(part, c * chunk, std::min(n, (c + 1) * chunk));
+    };
+    if (!team_ || chunks < 2) {
+      run_chunks(0, 0, chunks);
+      return;
+    }
+    const std::size_t parts = team_->parts();
+    team_->run([&](unsigned p) { run_chunks(p, chunks * p / parts, chunks * (p + 1) / parts); });
   }
 
  private:

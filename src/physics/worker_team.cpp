@@ -44,6 +44,13 @@ WorkerTeam::~WorkerTeam() {
     t.join();
 }
 
+void WorkerTeam::keep_awake(bool awake) {
+  awake_.store(awake, std::memory_order_relaxed);
+  if (!awake) return;
+  epoch_.fetch_add(1, std::memory_order_release);  // no job: a woken worker finds none to claim
+  epoch_.notify_all();
+}
+
 void WorkerTeam::dispatch(const void* job, Call call) {
   job_ = job;
   call_ = call;
@@ -78,7 +85,9 @@ void WorkerTeam::work(unsigned part) {
       for (unsigned spin = 1; epoch == seen; ++spin) {
         relax();
         // The clock is read now and then only: it costs more than a pause.
-        if (spin % 256 == 0 && std::chrono::steady_clock::now() > give_up) {
+        if (spin % 256 == 0 && !awake_.load(std::memory_order_relaxed) &&
+            std::chrono::steady_clock::now() > give_up) {
+          sleeps_.fetch_add(1, std::memory_order_relaxed);
           epoch_.wait(seen, std::memory_order_acquire);
         }
         epoch = epoch_.load(std::memory_order_acquire);

@@ -5,7 +5,9 @@
 // when its colours were split), while here a worker spins on a counter between jobs, so a hand-over
 // costs a cache line's round trip (0.8 us on this machine). A worker that has waited about 50 us
 // sleeps (a futex: std::atomic::wait), so a paced session leaves the cores to the haptic loop and
-// the renderer between steps.
+// the renderer between steps. A step with serial stretches longer than that between its loops
+// keeps the team awake for its length (keep_awake): waking a sleeping worker takes longer than
+// many of those loops, which the caller would then run alone.
 //
 // A part no worker has started when the caller is done with its own is run by the caller: a
 // worker the system has not scheduled (more threads than free cores) delays nothing. Parts are
@@ -27,6 +29,12 @@ class WorkerTeam {
   WorkerTeam& operator=(const WorkerTeam&) = delete;
 
   unsigned parts() const { return parts_; }
+  // While kept awake, a worker spins between jobs however long the gap (a step's serial stretches
+  // between its parallel loops), and one asleep is woken now, ahead of the next job; then it goes
+  // back to sleeping after about 50 us (a paced session's wait between steps).
+  void keep_awake(bool awake);
+  // How many times a worker has gone to sleep (for tests and diagnostics).
+  std::uint64_t sleeps() const { return sleeps_.load(std::memory_order_relaxed); }
 
   // Calls part(p) once for every p in [0, parts()), p = 0 on the calling thread, and returns when
   // all have returned. part must not throw. One job at a time: a call from inside a part (or from
@@ -56,6 +64,8 @@ class WorkerTeam {
   Call call_ = nullptr;
   std::atomic<bool> stop_{false};
   std::atomic<bool> busy_{false};
+  std::atomic<bool> awake_{false};
+  std::atomic<std::uint64_t> sleeps_{0};
   alignas(64) std::atomic<std::uint32_t> epoch_{0};  // bumped to hand over a job
   // Per part: taken by a thread (the worker or the caller), and finished.
   std::unique_ptr<std::atomic<std::uint32_t>[]> claimed_, finished_;

@@ -122,7 +122,8 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
   return scene;
 }
 
-void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile) {
+void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile,
+                         const physics::Executor& exec) {
   Stopwatch clock;
   tissue::TissueWorld& w = scene.patch.world;
   const Real dt = w.model.solver.dt;
@@ -131,7 +132,7 @@ void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile) {
   profile[physics::Stage::heart] += clock.lap();
   physics::ContactSet& contacts = w.state.contacts;
   contacts.clear();
-  tissue::gather_heart_contacts(scene.heart, w.state.particles, dt, scene.contact, contacts);
+  tissue::gather_heart_contacts(scene.heart, w.state.particles, dt, scene.contact, contacts, exec);
   tissue::gather_wall_contacts(scene.layout.wall, w.state.particles, dt, scene.contact, contacts);
   tissue::gather_floor_contacts(scene.layout.cavity_floor_y, w.state.particles, dt, scene.contact,
                                 contacts);
@@ -152,7 +153,7 @@ physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& ex
   // Nothing should be inside the heart now; a particle that is was missed by the gathering.
   scene.missed_heart_contacts =
       tissue::collide_with_heart(scene.heart, w.state.particles, w.state.scratch.saved_position,
-                                 tissue::kHeartStepSearch, scene.heart.margin);
+                                 exec, tissue::kHeartStepSearch, scene.heart.margin);
   scene.heart.last_contacts = heart_contacts(scene);
   r.profile[physics::Stage::contacts] += clock.lap();
   tissue::finish_tissue_step(w);
@@ -161,8 +162,9 @@ physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& ex
 }
 
 physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exec) {
+  const physics::Executor::Awake awake(exec);  // as the session's step (surgical_session.cpp)
   physics::StepProfile before;
-  prepare_thorax_step(scene, before);
+  prepare_thorax_step(scene, before, exec);
   physics::StepResult r = finish_thorax_step(scene, exec);
   r.profile += before;
   return r;

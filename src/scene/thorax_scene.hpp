@@ -90,8 +90,10 @@ physics::StepResult step_thorax_scene(ThoraxScene& scene, physics::Executor& exe
 // surgical session's instruments): advance the heart and gather the heart's and the wall's
 // contacts for the coming step; then the step itself (tissue dynamics with the contacts inside
 // the solve, the check for missed heart contacts, surfaces). The first adds the time of its
-// stages to `profile`; the second's result carries the step's.
-void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile);
+// stages to `profile`; the second's result carries the step's. Both search the heart on exec's
+// threads.
+void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile,
+                         const physics::Executor& exec);
 physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec);
 
 // Heart contacts in touch at the end of the last step.

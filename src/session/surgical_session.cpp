@@ -227,6 +227,9 @@ SessionInput sample_script(const surgery::InputScript& script, double t) {
 
 physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
                                  physics::Executor& exec) {
+  // The step's loops on several threads are parted by serial stretches (the instruments, the
+  // heart's advance, the session's bookkeeping) longer than a worker waits awake.
+  const physics::Executor::Awake awake(exec);
   tissue::TissueWorld& w = s.scene.patch.world;
   const Real dt = w.model.solver.dt;
   const double time = w.state.time;  // events are stamped with the step's start
@@ -350,7 +353,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
                                   1 / s.params.cautery.coagulated_compliance_factor);
   }
   profile[physics::Stage::cutting] += clock.lap();
-  scene::prepare_thorax_step(s.scene, profile);
+  scene::prepare_thorax_step(s.scene, profile, exec);
   clock.lap();
   // The heart and the wall stop the proxies inside the solve too: station k's rows are
   // [stop_first[k], stop_first[k + 1]).

@@ -19,6 +19,14 @@ constexpr Real kColliderCell = Real(0.005);
 // Below 1 by far more than the rounding of a closest point (see nearest_per_component).
 constexpr Real kBoxSlack = Real(1) - Real(1e-9);
 
+// How far the grid's boxes reach past their triangles', so that the grid serves while the heart
+// travels less (unit: m): a beat's fastest motion is about 0.2 mm a step.
+constexpr Real kGridSlack = Real(0.001);
+
+// The normals and the triangles' boxes now; the grid rebuilt once the heart has travelled its
+// slack since it was built. Until then every triangle lies inside the box it was filed under (no
+// point of it has moved farther than the travel), so a query visits every triangle its box
+// reaches, among others that the exact boxes then skip: the same answers.
 void refresh_collider(HeartField& h) {
   const auto& tris = h.model.topology.triangles;
   geometry::compute_vertex_normals(h.current, tris, h.normals);
@@ -26,7 +34,15 @@ void refresh_collider(HeartField& h) {
     h.boxes[t] =
         geometry::triangle_box(h.current[tris[t][0]], h.current[tris[t][1]], h.current[tris[t][2]]);
   }
-  h.grid.rebuild(h.boxes, kColliderCell);
+  const Real travelled = h.clearance.travel - h.grid_travel_at;
+  if (h.grid_travel_at >= 0 && travelled < kGridSlack) return;
+  h.grid_boxes.resize(h.boxes.size());  // sized at set-up: no allocation
+  for (std::size_t t = 0; t < h.boxes.size(); ++t) {
+    h.grid_boxes[t] = geometry::Box(h.boxes[t].min() - Vec3::Constant(kGridSlack),
+                                    h.boxes[t].max() + Vec3::Constant(kGridSlack));
+  }
+  h.grid.rebuild(h.grid_boxes, kColliderCell);
+  h.grid_travel_at = h.clearance.travel;
 }
 
 }  // namespace
@@ -157,12 +173,15 @@ namespace {
 // nearest_per_component's search, reaching `reach` >= search: what lies between search and reach
 // is found but not reported, and bounds the distance to the whole surface. Returns that bound:
 // no triangle nearer to p (a rounding's slack under it).
-Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach) {
+// nearest, visited, stamp: the query's scratch (the field's own, or a part's).
+Real search_heart(HeartField& h, std::vector<HeartField::Nearest>& nearest,
+                  std::vector<std::uint32_t>& visited, std::uint32_t& stamp, const Vec3& p,
+                  Real search, Real reach) {
   const auto& tris = h.model.topology.triangles;
-  for (HeartField::Nearest& n : h.nearest)
+  for (HeartField::Nearest& n : nearest)
     n = HeartField::Nearest{};
   auto consider = [&](std::uint32_t t) {
-    HeartField::Nearest& best = h.nearest[h.triangle_component[t]];
+    HeartField::Nearest& best = nearest[h.triangle_component[t]];
     // A triangle's distance is at least its box's: skip the closest-point computation for
     // triangles whose box is beyond the reach or the component's best so far. The slack
     // keeps the skip conservative under rounding, so the answer is the same.
@@ -180,12 +199,12 @@ Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach) {
     best.normal = q.bary[0] * h.normals[tri[0]] + q.bary[1] * h.normals[tri[1]] +
                   q.bary[2] * h.normals[tri[2]];
   };
-  h.grid.visit(geometry::Box(p - Vec3::Constant(reach), p + Vec3::Constant(reach)), h.visited,
-               h.stamp, consider);
+  h.grid.visit(geometry::Box(p - Vec3::Constant(reach), p + Vec3::Constant(reach)), visited, stamp,
+               consider);
   // Every triangle is beyond the reach (not visited, or its box is) or no nearer than its
   // component's best.
   Real clear2 = reach * reach;
-  for (HeartField::Nearest& n : h.nearest) {
+  for (HeartField::Nearest& n : nearest) {
     clear2 = std::min(clear2, n.distance2);
     if (n.triangle == HeartField::kNone || n.distance2 > search * search ||
         !(n.normal.norm() > 0)) {
@@ -199,37 +218,74 @@ Real search_heart(HeartField& h, const Vec3& p, Real search, Real reach) {
   return std::sqrt(clear2) * kBoxSlack;
 }
 
+// What the clearance proves of particle's query at p, or else its search (heart_clearance.hpp);
+// the answer in nearest; counts the query as searched or skipped. The clearance is sized.
+void clearance_query(HeartField& h, std::vector<HeartField::Nearest>& nearest,
+                     std::vector<std::uint32_t>& visited, std::uint32_t& stamp,
+                     std::uint64_t& searched, std::uint64_t& skipped, std::uint32_t particle,
+                     const Vec3& p, Real search) {
+  HeartClearance& c = h.clearance;
+  const Real known = c.distance[particle];
+  if (known - (p - c.from[particle]).norm() - (c.travel - c.travel_at[particle]) > search) {
+    ++skipped;
+    for (HeartField::Nearest& n : nearest)
+      n = HeartField::Nearest{};
+    return;
+  }
+  ++searched;
+  // A particle near the heart last time searches as far as asked (it is likely near still); one
+  // clear of it, or new, farther.
+  const Real reach = known < 0 || known >= search ? search + c.reach : search;
+  c.distance[particle] = search_heart(h, nearest, visited, stamp, p, search, reach);
+  c.from[particle] = p;
+  c.travel_at[particle] = c.travel;
+}
+
+void size_clearance(HeartClearance& c, std::size_t particles) {
+  if (c.distance.size() == particles) return;
+  c.distance.assign(particles, Real(-1));  // once, at the first step
+  c.from.assign(particles, Vec3::Zero());
+  c.travel_at.assign(particles, Real(0));
+}
+
 }  // namespace
 
 // Nearest point of each component of the heart's surface to p within `search`, the side of p
 // (signed distance, negative inside) and the surface normal there. The heart is a union of
 // closed surfaces (LV, RV) that may overlap; p is inside the heart when it is inside any.
 void nearest_per_component(HeartField& h, const Vec3& p, Real search) {
-  search_heart(h, p, search, search);
+  search_heart(h, h.nearest, h.visited, h.stamp, p, search, search);
 }
 
 void nearest_per_component_of_particle(HeartField& h, std::uint32_t particle, std::size_t particles,
                                        const Vec3& p, Real search) {
-  HeartClearance& c = h.clearance;
-  if (c.distance.size() != particles) {  // once, at the first step
-    c.distance.assign(particles, Real(-1));
-    c.from.assign(particles, Vec3::Zero());
-    c.travel_at.assign(particles, Real(0));
+  size_clearance(h.clearance, particles);
+  clearance_query(h, h.nearest, h.visited, h.stamp, h.clearance.searched, h.clearance.skipped,
+                  particle, p, search);
+}
+
+void nearest_per_component_of_particle(HeartField& h, HeartField::PartQuery& q,
+                                       std::uint32_t particle, const Vec3& p, Real search) {
+  clearance_query(h, q.nearest, q.visited, q.stamp, q.searched, q.skipped, particle, p, search);
+}
+
+void prepare_heart_queries(HeartField& h, std::size_t particles, const physics::Executor& exec) {
+  size_clearance(h.clearance, particles);
+  if (h.part_queries.size() < exec.parts()) h.part_queries.resize(exec.parts());
+  for (HeartField::PartQuery& q : h.part_queries) {
+    q.nearest.resize(h.nearest.size());
+    q.searched = q.skipped = 0;
+    q.put_out = 0;
   }
-  const Real known = c.distance[particle];
-  if (known - (p - c.from[particle]).norm() - (c.travel - c.travel_at[particle]) > search) {
-    ++c.skipped;
-    for (HeartField::Nearest& n : h.nearest)
-      n = HeartField::Nearest{};
-    return;
+}
+
+void finish_heart_queries(HeartField& h) {
+  for (HeartField::PartQuery& q : h.part_queries) {
+    h.clearance.searched += q.searched;
+    h.clearance.skipped += q.skipped;
+    q.searched = q.skipped = 0;
+    q.put_out = 0;
   }
-  ++c.searched;
-  // A particle near the heart last time searches as far as asked (it is likely near still); one
-  // clear of it, or new, farther.
-  const Real reach = known < 0 || known >= search ? search + c.reach : search;
-  c.distance[particle] = search_heart(h, p, search, reach);
-  c.from[particle] = p;
-  c.travel_at[particle] = c.travel;
 }
 
 Real heart_signed_distance(HeartField& h, const Vec3& p, Real search) {
@@ -263,38 +319,62 @@ Vec3 heart_surface_velocity(HeartField& h, const Vec3& p, Real search) {
   return rate * v;
 }
 
+namespace {
+
+// Particles put out of the heart per chunk of a parallel pass.
+constexpr std::size_t kHeartParticleChunk = 256;
+
+}  // namespace
+
 std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
-                                 std::span<const Vec3> previous, Real min_search, Real inside) {
+                                 std::span<const Vec3> previous, const physics::Executor& exec,
+                                 Real min_search, Real inside) {
   geometry::Box bounds;
   for (const Vec3& x : h.current)
     bounds.extend(x);
+  prepare_heart_queries(h, P.size(), exec);
+  std::vector<HeartField::PartQuery>& parts = h.part_queries;
+  exec.for_chunks_in_parts(
+      P.size(), kHeartParticleChunk, [&](std::size_t part, std::size_t begin, std::size_t end) {
+        HeartField::PartQuery& q = parts[part];
+        for (std::size_t i = begin; i < end; ++i) {
+          if (P.inverse_mass[i] == 0) continue;
+          const Real search = min_search + (P.position[i] - previous[i]).norm();
+          if (bounds.exteriorDistance(P.position[i]) > search) continue;
+          // Out of the component p is deepest in, onto its surface plus the margin; where
+          // components overlap that point can lie inside another, so look again (a few passes reach
+          // the crease between them).
+          bool moved = false;
+          for (int pass = 0; pass < kHeartCollisionPasses; ++pass) {
+            nearest_per_component_of_particle(h, q, static_cast<std::uint32_t>(i), P.position[i],
+                                              search);
+            const HeartField::Nearest* deepest = nullptr;
+            for (const HeartField::Nearest& n : q.nearest) {
+              if (n.triangle == HeartField::kNone || n.signed_distance >= h.margin - inside)
+                continue;
+              if (deepest == nullptr || n.signed_distance < deepest->signed_distance) deepest = &n;
+            }
+            if (deepest == nullptr) break;
+            P.position[i] = deepest->point + h.margin * deepest->normal;
+            const Real vn = P.velocity[i].dot(deepest->normal);
+            if (vn < 0) P.velocity[i] -= vn * deepest->normal;
+            moved = true;
+          }
+          q.put_out += moved ? 1 : 0;
+        }
+      });
   std::uint32_t contacts = 0;
-  for (std::size_t i = 0; i < P.size(); ++i) {
-    if (P.inverse_mass[i] == 0) continue;
-    const Real search = min_search + (P.position[i] - previous[i]).norm();
-    if (bounds.exteriorDistance(P.position[i]) > search) continue;
-    // Out of the component p is deepest in, onto its surface plus the margin; where components
-    // overlap that point can lie inside another, so look again (a few passes reach the crease
-    // between them).
-    bool moved = false;
-    for (int pass = 0; pass < kHeartCollisionPasses; ++pass) {
-      nearest_per_component_of_particle(h, static_cast<std::uint32_t>(i), P.size(), P.position[i],
-                                        search);
-      const HeartField::Nearest* deepest = nullptr;
-      for (const HeartField::Nearest& n : h.nearest) {
-        if (n.triangle == HeartField::kNone || n.signed_distance >= h.margin - inside) continue;
-        if (deepest == nullptr || n.signed_distance < deepest->signed_distance) deepest = &n;
-      }
-      if (deepest == nullptr) break;
-      P.position[i] = deepest->point + h.margin * deepest->normal;
-      const Real vn = P.velocity[i].dot(deepest->normal);
-      if (vn < 0) P.velocity[i] -= vn * deepest->normal;
-      moved = true;
-    }
-    contacts += moved ? 1 : 0;
-  }
+  for (const HeartField::PartQuery& q : parts)
+    contacts += q.put_out;
+  finish_heart_queries(h);
   h.last_contacts = contacts;
   return contacts;
+}
+
+std::uint32_t collide_with_heart(HeartField& h, physics::Particles& P,
+                                 std::span<const Vec3> previous, Real min_search, Real inside) {
+  const physics::Executor serial(1);
+  return collide_with_heart(h, P, previous, serial, min_search, inside);
 }
 
 }  // namespace imasim::tissue

@@ -17,6 +17,9 @@
 #include <vector>
 
 #include "geometry/uniform_grid.hpp"
+#include "physics/chunk_rows.hpp"
+#include "physics/contact.hpp"
+#include "physics/executor.hpp"
 #include "tissue/heart.hpp"
 #include "tissue/heart_clearance.hpp"
 #include "tissue/tissue_world.hpp"
@@ -43,7 +46,9 @@ struct HeartField {
   std::uint32_t last_contacts = 0;       // particles put back on the surface by the last collide()
   // Collider scratch, sized at set-up.
   std::vector<geometry::Box> boxes;
-  geometry::UniformGrid grid;
+  geometry::UniformGrid grid;  // over grid_boxes: the boxes grown by a slack (heart_field.cpp)
+  std::vector<geometry::Box> grid_boxes;
+  Real grid_travel_at = -1;  // clearance.travel when the grid was built; < 0: not built (unit: m)
   std::vector<std::uint32_t> visited;
   std::uint32_t stamp = 0;
   std::vector<std::uint32_t> triangle_component;  // component (LV 0, RV 1) of each triangle
@@ -56,6 +61,18 @@ struct HeartField {
   };
   std::vector<Nearest> nearest;
   HeartClearance clearance;  // what the particles' last searches proved (heart_clearance.hpp)
+  // A parallel pass's scratch, one per part of the executor: its own `nearest`, `visited` and
+  // `stamp`, the counts it adds to `clearance` when the pass ends, and the particles it put out
+  // of the heart (collide_with_heart).
+  struct alignas(64) PartQuery {  // a cache line apart: parts count and stamp at once
+    std::vector<Nearest> nearest;
+    std::vector<std::uint32_t> visited;
+    std::uint32_t stamp = 0;
+    std::uint64_t searched = 0, skipped = 0;
+    std::uint32_t put_out = 0;
+  };
+  std::vector<PartQuery> part_queries;
+  physics::ChunkRows<physics::ContactRow> contact_chunks;  // gather_heart_contacts' rows
 };
 
 // Projection passes per particle in collide_with_heart (where the ventricles overlap, leaving
@@ -92,6 +109,12 @@ inline constexpr Real kHeartStepSearch = Real(0.002);  // (unit: m)
 // `inside` is how far past the margin band a particle must be to count: 0 at set-up (keep the
 // margin), the margin itself after a step whose contacts keep it (only a particle actually inside
 // the surface was missed; the contact planes approximate the faceted surface within the band).
+// In parallel over fixed chunks of the particles (each particle's answer is its own): the same
+// bits on any thread count.
+std::uint32_t collide_with_heart(HeartField& heart, physics::Particles& particles,
+                                 std::span<const Vec3> previous, const physics::Executor& exec,
+                                 Real search = kHeartStepSearch, Real inside = 0);
+// On the calling thread alone.
 std::uint32_t collide_with_heart(HeartField& heart, physics::Particles& particles,
                                  std::span<const Vec3> previous, Real search = kHeartStepSearch,
                                  Real inside = 0);
@@ -106,6 +129,15 @@ void nearest_per_component(HeartField& heart, const Vec3& p, Real search);
 // for the steps to come). The same answer as nearest_per_component(heart, p, search).
 void nearest_per_component_of_particle(HeartField& heart, std::uint32_t particle,
                                        std::size_t particles, const Vec3& p, Real search);
+// The same for a parallel pass: the answer in query.nearest, the count in query. Call
+// prepare_heart_queries first, on one thread.
+void nearest_per_component_of_particle(HeartField& heart, HeartField::PartQuery& query,
+                                       std::uint32_t particle, const Vec3& p, Real search);
+// Readies a parallel pass over `particles` particles on `exec`: the clearance sized for them, a
+// query for every part (allocates only the first time, or when either grows).
+void prepare_heart_queries(HeartField& heart, std::size_t particles, const physics::Executor& exec);
+// Adds the parts' counts to heart.clearance after a parallel pass.
+void finish_heart_queries(HeartField& heart);
 
 // Signed distance of p from the heart, the union of its closed surfaces, near p: inside any of
 // them, minus the depth in the one it is deepest in; outside all, the distance to the nearest;

@@ -59,6 +59,16 @@ void build_neighbours(StrandSet& set, const physics::Particles& P) {
     }
     set.pair_start.push_back(static_cast<std::uint32_t>(set.pair_lower.size()));
   }
+  // Counting sort by the upper particle; pairs are visited in ascending order, so each list is.
+  set.incoming_start.assign(count + 1, 0u);
+  for (const std::uint32_t j : set.pair_upper)
+    ++set.incoming_start[j + 1];
+  for (std::uint32_t k = 0; k < count; ++k)
+    set.incoming_start[k + 1] += set.incoming_start[k];
+  set.incoming_pair.resize(set.pair_upper.size());
+  std::vector<std::uint32_t> next(set.incoming_start.begin(), set.incoming_start.end() - 1);
+  for (std::uint32_t p = 0; p < set.pair_upper.size(); ++p)
+    set.incoming_pair[next[set.pair_upper[p]]++] = p;
 }
 
 }  // namespace

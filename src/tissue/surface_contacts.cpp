@@ -4,38 +4,59 @@
 
 namespace imasim::tissue {
 
+namespace {
+
+constexpr std::size_t kHeartContactChunk = 256;  // particles a chunk of the parallel gathering
+
+}  // namespace
+
 void gather_heart_contacts(HeartField& h, const physics::Particles& P, Real dt,
-                           const SurfaceContactParams& params, physics::ContactSet& out) {
+                           const SurfaceContactParams& params, physics::ContactSet& out,
+                           const physics::Executor& exec) {
   geometry::Box bounds;
   for (std::size_t v = 0; v < h.current.size(); ++v) {
     bounds.extend(h.current[v]);
     bounds.extend(h.previous[v]);
   }
   const auto& tris = h.model.topology.triangles;
-  for (std::size_t k = 0; k < P.size(); ++k) {
-    if (P.inverse_mass[k] == 0) continue;
-    const Vec3 probe = P.position[k] + dt * P.velocity[k];
-    const Real search = params.search + h.margin + dt * P.velocity[k].norm();
-    if (bounds.exteriorDistance(probe) > search) continue;
-    nearest_per_component_of_particle(h, static_cast<std::uint32_t>(k), P.size(), probe, search);
-    for (const HeartField::Nearest& n : h.nearest) {
-      if (n.triangle == HeartField::kNone || n.signed_distance > search) continue;
-      const auto& t = tris[n.triangle];
-      const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
-          probe, h.current[t[0]], h.current[t[1]], h.current[t[2]]);
-      physics::ContactRow c;
-      c.particle = static_cast<std::uint32_t>(k);
-      c.tag = kHeartContact;
-      c.point1 = q.point;
-      c.point0 = q.bary[0] * h.previous[t[0]] + q.bary[1] * h.previous[t[1]] +
-                 q.bary[2] * h.previous[t[2]];
-      c.normal = n.normal;
-      c.margin = h.margin;
-      c.static_friction = params.heart_static_friction;
-      c.kinetic_friction = params.heart_kinetic_friction;
-      out.rows.push_back(c);
+  prepare_heart_queries(h, P.size(), exec);
+  auto gather = [&](std::size_t part, std::size_t begin, std::size_t end,
+                    std::vector<physics::ContactRow>& rows) {
+    HeartField::PartQuery& query = h.part_queries[part];
+    for (std::size_t k = begin; k < end; ++k) {
+      if (P.inverse_mass[k] == 0) continue;
+      const Vec3 probe = P.position[k] + dt * P.velocity[k];
+      const Real search = params.search + h.margin + dt * P.velocity[k].norm();
+      if (bounds.exteriorDistance(probe) > search) continue;
+      nearest_per_component_of_particle(h, query, static_cast<std::uint32_t>(k), probe, search);
+      for (const HeartField::Nearest& n : query.nearest) {
+        if (n.triangle == HeartField::kNone || n.signed_distance > search) continue;
+        const auto& t = tris[n.triangle];
+        const geometry::TrianglePoint q = geometry::closest_point_on_triangle(
+            probe, h.current[t[0]], h.current[t[1]], h.current[t[2]]);
+        physics::ContactRow c;
+        c.particle = static_cast<std::uint32_t>(k);
+        c.tag = kHeartContact;
+        c.point1 = q.point;
+        c.point0 = q.bary[0] * h.previous[t[0]] + q.bary[1] * h.previous[t[1]] +
+                   q.bary[2] * h.previous[t[2]];
+        c.normal = n.normal;
+        c.margin = h.margin;
+        c.static_friction = params.heart_static_friction;
+        c.kinetic_friction = params.heart_kinetic_friction;
+        rows.push_back(c);
+      }
     }
-  }
+  };
+  // Room for a row per component (ventricle) a particle.
+  h.contact_chunks.gather(exec, P.size(), kHeartContactChunk, h.nearest.size(), out.rows, gather);
+  finish_heart_queries(h);
+}
+
+void gather_heart_contacts(HeartField& h, const physics::Particles& P, Real dt,
+                           const SurfaceContactParams& params, physics::ContactSet& out) {
+  const physics::Executor serial(1);
+  gather_heart_contacts(h, P, dt, params, out, serial);
 }
 
 void gather_wall_contacts(const geometry::CylinderPatchSpec& wall, const physics::Particles& P,

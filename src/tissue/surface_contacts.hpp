@@ -38,6 +38,11 @@ struct SurfaceContactParams {
 // step's start and end shapes (advance_heart). dt: the step (unit: s).
 void gather_heart_contacts(HeartField& heart, const physics::Particles& particles, Real dt,
                            const SurfaceContactParams& params, physics::ContactSet& out);
+// The same in parallel over fixed chunks of the particles: the same rows in the same order on
+// any thread count.
+void gather_heart_contacts(HeartField& heart, const physics::Particles& particles, Real dt,
+                           const SurfaceContactParams& params, physics::ContactSet& out,
+                           const physics::Executor& exec);
 
 // Appends the chest wall's contacts (margin 0).
 void gather_wall_contacts(const geometry::CylinderPatchSpec& wall,

@@ -88,7 +88,7 @@ physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& 
   clock.lap();
   r.profile[physics::Stage::coupling] += follow_rows;
   if (!r.ok()) return r;
-  smooth_strand_velocities(world);
+  smooth_strand_velocities(world, exec);
   // eq. 9 with beta = 0: the decay after the step, with the velocity made to agree.
   for (const OffsetCoupling& c : world.couplings) {
     apply_coupling(c, world.state.particles, world.reference, world.state.scratch.saved_position,

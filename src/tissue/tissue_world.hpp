@@ -91,6 +91,10 @@ struct StrandSet {
   // ascending order, and pair_lower[p] = k (for passes over all pairs); the smoothing
   // coefficient in [0, 1].
   std::vector<std::uint32_t> pair_start, pair_lower, pair_upper;
+  // The same pairs seen from their upper particle: incoming_pair[incoming_start[k] ..
+  // incoming_start[k + 1]] are the pairs (j, k), j < k, in ascending order (so a particle can
+  // gather its sums in the order a pass over the pairs would scatter them).
+  std::vector<std::uint32_t> incoming_start, incoming_pair;
   Real xsph_coefficient = 0;
   Real xsph_radius = 0;  // (unit: m)
   // The fat a strand stands for as a column to its base, which does not move (fat_support.hpp):

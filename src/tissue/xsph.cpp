@@ -24,15 +24,15 @@ Real kernel(const Vec3& xi, const Vec3& xj, Real h) {
 // time: the square roots and divisions of a batch go through the vector units together. The
 // formulas of kernel(), lane by lane (the last bit may differ where the compiler fuses a multiply
 // and an add differently; each pair always takes the same path, so runs stay repeatable).
-void pair_kernels(const StrandSet& set, const Vec3* x, Real* W) {
-  const auto pairs = static_cast<std::uint32_t>(set.pair_lower.size());
+void pair_kernels(const StrandSet& set, const Vec3* x, Real* W, std::uint32_t begin,
+                  std::uint32_t end) {
   const std::uint32_t first = set.first_particle;
   const std::uint32_t* lower = set.pair_lower.data();
   const std::uint32_t* upper = set.pair_upper.data();
   const Real* diameter = set.diameter.data();  // 0: removed by a cut
   const Real h = set.xsph_radius;
-  std::uint32_t p = 0;
-  for (; p + kLanes <= pairs; p += kLanes) {
+  std::uint32_t p = begin;
+  for (; p + kLanes <= end; p += kLanes) {
     alignas(physics::simd::kBytes) Real dx[kLanes], dy[kLanes], dz[kLanes], live[kLanes];
     for (std::uint32_t k = 0; k < kLanes; ++k) {
       const Vec3 d = x[first + upper[p + k]] - x[first + lower[p + k]];
@@ -48,21 +48,21 @@ void pair_kernels(const StrandSet& set, const Vec3* x, Real* W) {
     for (std::uint32_t k = 0; k < kLanes; ++k)
       W[p + k] = w[k];
   }
-  for (; p < pairs; ++p) {
+  for (; p < end; ++p) {
     const bool live = diameter[lower[p]] != 0 && diameter[upper[p]] != 0;
     W[p] = live ? kernel(x[first + lower[p]], x[first + upper[p]], h) : Real(0);
   }
 }
 
 // Each pair's exchange weight c W_ij / max(S_i, S_j) (0 where W_ij = 0), kLanes at a time.
-void pair_shares(const StrandSet& set, const Real* W, const Real* S, Real* share) {
-  const auto pairs = static_cast<std::uint32_t>(set.pair_lower.size());
+void pair_shares(const StrandSet& set, const Real* W, const Real* S, Real* share,
+                 std::uint32_t begin, std::uint32_t end) {
   const std::uint32_t first = set.first_particle;
   const std::uint32_t* lower = set.pair_lower.data();
   const std::uint32_t* upper = set.pair_upper.data();
   const Real c = set.xsph_coefficient;
-  std::uint32_t p = 0;
-  for (; p + kLanes <= pairs; p += kLanes) {
+  std::uint32_t p = begin;
+  for (; p + kLanes <= end; p += kLanes) {
     alignas(physics::simd::kBytes) Real si[kLanes], sj[kLanes];
     for (std::uint32_t k = 0; k < kLanes; ++k) {
       si[k] = S[first + lower[p + k]];
@@ -77,15 +77,18 @@ void pair_shares(const StrandSet& set, const Real* W, const Real* S, Real* share
     for (std::uint32_t k = 0; k < kLanes; ++k)
       share[p + k] = out[k];
   }
-  for (; p < pairs; ++p) {
+  for (; p < end; ++p) {
     const Real w = W[p];
     share[p] = w > 0 ? c * w / std::max(S[first + lower[p]], S[first + upper[p]]) : Real(0);
   }
 }
 
-}  // namespace
+// Chunks of the parallel passes: over pairs a multiple of the SIMD width, so that only the last
+// pairs take the scalar tail, as in one pass over them all (the same bits on any thread count).
+constexpr std::size_t kPairChunk = 2048, kParticleChunk = 512;
+static_assert(kPairChunk % kLanes == 0);
 
-void smooth_strand_velocities(TissueWorld& world) {
+void smooth_set(TissueWorld& world, const StrandSet& set, const physics::Executor& exec) {
   physics::Particles& P = world.state.particles;
   // Raw pointers, so the loops below keep their sums in registers (a store through one vector
   // could otherwise alias another's).
@@ -95,50 +98,78 @@ void smooth_strand_velocities(TissueWorld& world) {
   Real* S = world.xsph_weight.data();
   Real* W = world.xsph_kernel.data();  // W_ij per pair, computed once per pair
   Real* share = world.xsph_share.data();
-  for (const StrandSet& set : world.strands) {
-    if (set.xsph_coefficient <= 0) continue;
-    const std::uint32_t count = set.particle_count(), first = set.first_particle;
-    const Real* diameter = set.diameter.data();  // 0: removed by a cut
-    const std::uint32_t* pair_start = set.pair_start.data();
-    const std::uint32_t* upper = set.pair_upper.data();
-    pair_kernels(set, x, W);
-    // S_i = sum_j W_ij over the live neighbours. Each pair is taken once, from its lower index
-    // (W_ij = W_ji), in a fixed order: the sums do not depend on how W was computed.
-    for (std::uint32_t k = 0; k < count; ++k)
-      S[first + k] = 0;
-    for (std::uint32_t k = 0; k < count; ++k) {
-      if (diameter[k] == 0) continue;
-      const std::uint32_t i = first + k;
-      Real s_i = S[i];
-      for (std::uint32_t p = pair_start[k]; p < pair_start[k + 1]; ++p) {
-        const Real w = W[p];
-        s_i += w;
-        S[first + upper[p]] += w;
+  const std::uint32_t count = set.particle_count(), first = set.first_particle;
+  const auto pairs = static_cast<std::uint32_t>(set.pair_lower.size());
+  const Real* diameter = set.diameter.data();  // 0: removed by a cut
+  const std::uint32_t* pair_start = set.pair_start.data();
+  const std::uint32_t* lower = set.pair_lower.data();
+  const std::uint32_t* upper = set.pair_upper.data();
+  const std::uint32_t* incoming_start = set.incoming_start.data();
+  const std::uint32_t* incoming = set.incoming_pair.data();
+  auto u32 = [](std::size_t n) { return static_cast<std::uint32_t>(n); };
+  exec.for_chunks(pairs, kPairChunk,
+                  [&](std::size_t b, std::size_t e) { pair_kernels(set, x, W, u32(b), u32(e)); });
+  // S_i = sum_j W_ij over the live neighbours, in a fixed order: the pairs (j, i) by ascending
+  // j, then (i, j) by ascending j, each particle gathering its own (the order one pass scattering
+  // every pair from its lower particle would add them in).
+  exec.for_chunks(count, kParticleChunk, [&](std::size_t b, std::size_t e) {
+    for (std::uint32_t k = u32(b); k < e; ++k) {
+      Real s_k = 0;
+      for (std::uint32_t q = incoming_start[k]; q < incoming_start[k + 1]; ++q) {
+        const std::uint32_t p = incoming[q];
+        if (diameter[lower[p]] != 0) s_k += W[p];
       }
-      S[i] = s_i;
-    }
-    // v_i' = v_i + c sum_j W_ij (v_j - v_i) / max(S_i, S_j): the pair's exchange is computed
-    // once and given to i and taken from j (equal masses within a set), so momentum is kept
-    // (to the rounding of the sums); c sum_j W_ij / max(S_i, S_j) <= c <= 1, so v_i' is a convex
-    // combination of velocities.
-    pair_shares(set, W, S, share);
-    for (std::uint32_t k = 0; k < count; ++k)
-      out[first + k] = v[first + k];
-    for (std::uint32_t k = 0; k < count; ++k) {
-      if (diameter[k] == 0) continue;
-      const std::uint32_t i = first + k;
-      Vec3 gain = Vec3::Zero();
-      for (std::uint32_t p = pair_start[k]; p < pair_start[k + 1]; ++p) {
-        const std::uint32_t j = first + upper[p];
-        const Vec3 exchange = share[p] * (v[j] - v[i]);
-        gain += exchange;
-        out[j] -= exchange;
+      if (diameter[k] != 0) {
+        for (std::uint32_t p = pair_start[k]; p < pair_start[k + 1]; ++p)
+          s_k += W[p];
       }
-      out[i] += gain;
+      S[first + k] = s_k;
     }
-    for (std::uint32_t k = 0; k < count; ++k)
+  });
+  exec.for_chunks(pairs, kPairChunk, [&](std::size_t b, std::size_t e) {
+    pair_shares(set, W, S, share, u32(b), u32(e));
+  });
+  // v_i' = v_i + c sum_j W_ij (v_j - v_i) / max(S_i, S_j): each pair's exchange, the same
+  // product for both particles, is taken from the upper one and given to the lower, so momentum
+  // is kept (to the rounding of the sums); c sum_j W_ij / max(S_i, S_j) <= c <= 1, so v_i' is a
+  // convex combination of velocities. Gathered per particle in the order above.
+  exec.for_chunks(count, kParticleChunk, [&](std::size_t b, std::size_t e) {
+    for (std::uint32_t k = u32(b); k < e; ++k) {
+      const std::uint32_t i = first + k;
+      Vec3 o = v[i];
+      for (std::uint32_t q = incoming_start[k]; q < incoming_start[k + 1]; ++q) {
+        const std::uint32_t p = incoming[q];
+        if (diameter[lower[p]] == 0) continue;
+        const Vec3 exchange = share[p] * (v[i] - v[first + lower[p]]);
+        o -= exchange;
+      }
+      if (diameter[k] != 0) {
+        Vec3 gain = Vec3::Zero();
+        for (std::uint32_t p = pair_start[k]; p < pair_start[k + 1]; ++p) {
+          const Vec3 exchange = share[p] * (v[first + upper[p]] - v[i]);
+          gain += exchange;
+        }
+        o += gain;
+      }
+      out[i] = o;
+    }
+  });
+  exec.for_chunks(count, kParticleChunk, [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k)
       v[first + k] = out[first + k];
-  }
+  });
+}
+
+}  // namespace
+
+void smooth_strand_velocities(TissueWorld& world, const physics::Executor& exec) {
+  for (const StrandSet& set : world.strands)
+    if (set.xsph_coefficient > 0) smooth_set(world, set, exec);
+}
+
+void smooth_strand_velocities(TissueWorld& world) {
+  const physics::Executor serial(1);
+  smooth_strand_velocities(world, serial);
 }
 
 }  // namespace imasim::tissue

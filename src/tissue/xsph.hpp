@@ -10,11 +10,16 @@
 // S_i alone) would not. Stable for any c in [0, 1]: c sum_j W_ij / max(S_i, S_j) <= c, so v_i' is
 // a convex combination of v_i and its neighbours' (no velocity grows). It damps relative motion and
 // leaves a common motion alone: the viscous feel of fat. Jacobi (all reads from the old
-// velocities), so the result does not depend on order; allocation-free (scratch sized at set-up).
+// velocities); allocation-free (scratch sized at set-up).
+#include "physics/executor.hpp"
 #include "tissue/tissue_world.hpp"
 
 namespace imasim::tissue {
 
+// In parallel over fixed chunks of pairs and of particles, each particle gathering its sums in
+// one fixed order: the same bits on any thread count.
+void smooth_strand_velocities(TissueWorld& world, const physics::Executor& exec);
+// On the calling thread alone.
 void smooth_strand_velocities(TissueWorld& world);
 
 }  // namespace imasim::tissue
