@@ -46,17 +46,8 @@ class Executor {
   // whatever the number of threads: results are bit-identical. body must not throw.
   template <class Body>
   void for_chunks(std::size_t n, std::size_t chunk, const Body& body) const {
-    const std::size_t chunks = (n + chunk - 1) / chunk;
-    auto run_chunks = [&](std::size_t c0, std::size_t c1) {
-      for (std::size_t c = c0; c < c1; ++c)
-        body(c * chunk, std::min(n, (c + 1) * chunk));
-    };
-    if (!team_ || chunks < 2) {
-      run_chunks(0, chunks);
-      return;
-    }
-    const std::size_t parts = team_->parts();
-    team_->run([&](unsigned p) { run_chunks(chunks * p / parts, chunks * (p + 1) / parts); });
+    for_chunks_in_parts(n, chunk,
+                        [&](std::size_t, std::size_t begin, std::size_t end) { body(begin, end); });
   }
 
   // Keeps the team's workers spinning while it lives (WorkerTeam::keep_awake): for a step whose
