@@ -100,7 +100,7 @@ fuzz: fuzz-build
 # The parallel loops under ThreadSanitizer: the tests that step the cloth, the thoracic patch,
 # search the heart, smooth the fat and cut on several threads (a full scene is too slow under
 # TSan), and the worker team that runs them (scripts/tsan.supp suppresses nothing).
-TSAN_TESTS = WorkerTeam.*:PinnedHash.Cloth*:ThoracicPatch.DeterministicAcrossThreadCounts:HeartParallel.*:Xsph.TwoThreadsSmoothAsOne:FasciaCut.CuttingIsDeterministic:ToolContact.CloudAroundTheForcepsIsDeterministic:LatestValue.*:HapticLoop.*:IgtlLink.*:LiveConsole.*
+TSAN_TESTS = WorkerTeam.*:PinnedHash.Cloth*:ThoracicPatch.DeterministicAcrossThreadCounts:HeartParallel.*:SurfaceParallel.*:Xsph.TwoThreadsSmoothAsOne:FasciaCut.CuttingIsDeterministic:ToolContact.CloudAroundTheForcepsIsDeterministic:LatestValue.*:HapticLoop.*:IgtlLink.*:LiveConsole.*
 tsan: deps
 	cmake -S . -B $(TSAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIMASIM_WERROR=ON \
 	  -DIMASIM_TSAN=ON -DIMASIM_BUILD_BENCH=OFF $(CMAKE_FLAGS)

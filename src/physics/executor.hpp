@@ -27,7 +27,7 @@ class Executor {
   // Calls a() and b() at once, on two threads when there are (a on the caller's), and returns
   // when both have. They must touch disjoint data and not throw; loops they call run serially.
   template <class A, class B>
-  void run_side_by_side(const A& a, const B& b) {
+  void run_side_by_side(const A& a, const B& b) const {
     if (!team_) {
       a();
       b();

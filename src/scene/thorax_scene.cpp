@@ -133,9 +133,9 @@ void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile,
   physics::ContactSet& contacts = w.state.contacts;
   contacts.clear();
   tissue::gather_heart_contacts(scene.heart, w.state.particles, dt, scene.contact, contacts, exec);
-  tissue::gather_wall_contacts(scene.layout.wall, w.state.particles, dt, scene.contact, contacts);
-  tissue::gather_floor_contacts(scene.layout.cavity_floor_y, w.state.particles, dt, scene.contact,
-                                contacts);
+  tissue::gather_wall_and_floor_contacts(scene.layout.wall, scene.layout.cavity_floor_y,
+                                         w.state.particles, dt, scene.contact, contacts, exec,
+                                         scene.wall_and_floor_chunks);
   tissue::drop_held_rows(contacts, 0, w.held);
   profile[physics::Stage::contacts] += clock.lap();
 }
@@ -156,7 +156,7 @@ physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& ex
                                  exec, tissue::kHeartStepSearch, scene.heart.margin);
   scene.heart.last_contacts = heart_contacts(scene);
   r.profile[physics::Stage::contacts] += clock.lap();
-  tissue::finish_tissue_step(w);
+  tissue::finish_tissue_step(w, exec);
   r.profile[physics::Stage::surfaces] += clock.lap();
   return r;
 }

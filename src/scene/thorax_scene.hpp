@@ -70,7 +70,8 @@ struct ThoraxScene {
   // Particles the solve's contacts missed and the step's check found inside the heart (put out
   // after the step, a warning: the search should have caught them).
   std::uint32_t missed_heart_contacts = 0;
-  std::vector<DisplayMesh> skeleton;  // display only
+  tissue::WallAndFloorChunks wall_and_floor_chunks;  // their gathering's rows per chunk
+  std::vector<DisplayMesh> skeleton;                 // display only
   std::vector<Port> ports;
   // What set-up repaired or decided on the user's behalf (a capped heart mesh, an automatic
   // placement), for the user to read.

@@ -430,7 +430,7 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   }
   surgery::dissolve_cut_strands(w, s.params.strand_cut);
   r.profile[physics::Stage::cutting] += clock.lap();
-  if (moved) tissue::finish_tissue_step(w);
+  if (moved) tissue::finish_tissue_step(w, exec);
   r.profile[physics::Stage::surfaces] += clock.lap();
   s.profile.add(r.profile);
   return r;

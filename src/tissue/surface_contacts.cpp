@@ -59,44 +59,84 @@ void gather_heart_contacts(HeartField& h, const physics::Particles& P, Real dt,
   gather_heart_contacts(h, P, dt, params, out, serial);
 }
 
+namespace {
+
+constexpr std::size_t kSurfaceContactChunk = 512;  // particles a chunk of the wall's and floor's
+
+// The chest wall's row for particle k: false where k is fixed or out of reach. axis: the wall's,
+// normalised.
+bool wall_row(const geometry::CylinderPatchSpec& wall, const Vec3& axis,
+              const physics::Particles& P, std::size_t k, Real dt,
+              const SurfaceContactParams& params, physics::ContactRow& c) {
+  if (P.inverse_mass[k] == 0) return false;
+  const Vec3 probe = P.position[k] + dt * P.velocity[k];
+  const Vec3 r = probe - wall.origin;
+  const Vec3 radial = r - r.dot(axis) * axis;
+  const Real distance = radial.norm();
+  const Real search = params.search + dt * P.velocity[k].norm();
+  if (distance < wall.radius - search || !(distance > 0)) return false;
+  const Vec3 outward = radial / distance;
+  c = physics::ContactRow{};
+  c.particle = static_cast<std::uint32_t>(k);
+  c.tag = kWallContact;
+  c.point0 = c.point1 = wall.origin + r.dot(axis) * axis + wall.radius * outward;
+  c.normal = -outward;  // the cavity's side
+  c.static_friction = params.wall_static_friction;
+  c.kinetic_friction = params.wall_kinetic_friction;
+  return true;
+}
+
+// The cavity floor's row for particle k: false where k is fixed or out of reach.
+bool floor_row(Real floor_y, const physics::Particles& P, std::size_t k, Real dt,
+               const SurfaceContactParams& params, physics::ContactRow& c) {
+  if (P.inverse_mass[k] == 0) return false;
+  const Vec3 probe = P.position[k] + dt * P.velocity[k];
+  if (probe.y() - floor_y > params.search + dt * P.velocity[k].norm()) return false;
+  c = physics::ContactRow{};
+  c.particle = static_cast<std::uint32_t>(k);
+  c.tag = kFloorContact;
+  c.point0 = c.point1 = Vec3(probe.x(), floor_y, probe.z());
+  c.normal = Vec3::UnitY();
+  c.static_friction = params.floor_static_friction;
+  c.kinetic_friction = params.floor_kinetic_friction;
+  return true;
+}
+
+}  // namespace
+
 void gather_wall_contacts(const geometry::CylinderPatchSpec& wall, const physics::Particles& P,
                           Real dt, const SurfaceContactParams& params, physics::ContactSet& out) {
   const Vec3 axis = wall.axis.normalized();
-  for (std::size_t k = 0; k < P.size(); ++k) {
-    if (P.inverse_mass[k] == 0) continue;
-    const Vec3 probe = P.position[k] + dt * P.velocity[k];
-    const Vec3 r = probe - wall.origin;
-    const Vec3 radial = r - r.dot(axis) * axis;
-    const Real distance = radial.norm();
-    const Real search = params.search + dt * P.velocity[k].norm();
-    if (distance < wall.radius - search || !(distance > 0)) continue;
-    const Vec3 outward = radial / distance;
-    physics::ContactRow c;
-    c.particle = static_cast<std::uint32_t>(k);
-    c.tag = kWallContact;
-    c.point0 = c.point1 = wall.origin + r.dot(axis) * axis + wall.radius * outward;
-    c.normal = -outward;  // the cavity's side
-    c.static_friction = params.wall_static_friction;
-    c.kinetic_friction = params.wall_kinetic_friction;
-    out.rows.push_back(c);
-  }
+  physics::ContactRow c;
+  for (std::size_t k = 0; k < P.size(); ++k)
+    if (wall_row(wall, axis, P, k, dt, params, c)) out.rows.push_back(c);
 }
 
 void gather_floor_contacts(Real floor_y, const physics::Particles& P, Real dt,
                            const SurfaceContactParams& params, physics::ContactSet& out) {
-  for (std::size_t k = 0; k < P.size(); ++k) {
-    if (P.inverse_mass[k] == 0) continue;
-    const Vec3 probe = P.position[k] + dt * P.velocity[k];
-    if (probe.y() - floor_y > params.search + dt * P.velocity[k].norm()) continue;
-    physics::ContactRow c;
-    c.particle = static_cast<std::uint32_t>(k);
-    c.tag = kFloorContact;
-    c.point0 = c.point1 = Vec3(probe.x(), floor_y, probe.z());
-    c.normal = Vec3::UnitY();
-    c.static_friction = params.floor_static_friction;
-    c.kinetic_friction = params.floor_kinetic_friction;
-    out.rows.push_back(c);
-  }
+  physics::ContactRow c;
+  for (std::size_t k = 0; k < P.size(); ++k)
+    if (floor_row(floor_y, P, k, dt, params, c)) out.rows.push_back(c);
+}
+
+void gather_wall_and_floor_contacts(const geometry::CylinderPatchSpec& wall, Real floor_y,
+                                    const physics::Particles& P, Real dt,
+                                    const SurfaceContactParams& params, physics::ContactSet& out,
+                                    const physics::Executor& exec, WallAndFloorChunks& chunks) {
+  const Vec3 axis = wall.axis.normalized();
+  using Rows = std::vector<physics::ContactRow>;
+  chunks.wall.gather(exec, P.size(), kSurfaceContactChunk, 1, out.rows,
+                     [&](std::size_t, std::size_t begin, std::size_t end, Rows& rows) {
+                       physics::ContactRow c;
+                       for (std::size_t k = begin; k < end; ++k)
+                         if (wall_row(wall, axis, P, k, dt, params, c)) rows.push_back(c);
+                     });
+  chunks.floor.gather(exec, P.size(), kSurfaceContactChunk, 1, out.rows,
+                      [&](std::size_t, std::size_t begin, std::size_t end, Rows& rows) {
+                        physics::ContactRow c;
+                        for (std::size_t k = begin; k < end; ++k)
+                          if (floor_row(floor_y, P, k, dt, params, c)) rows.push_back(c);
+                      });
 }
 
 void drop_held_rows(physics::ContactSet& out, std::size_t first,

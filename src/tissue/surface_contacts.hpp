@@ -16,6 +16,7 @@
 #include <span>
 
 #include "geometry/tube.hpp"
+#include "physics/chunk_rows.hpp"
 #include "physics/contact.hpp"
 #include "physics/particles.hpp"
 #include "tissue/heart_field.hpp"
@@ -52,6 +53,19 @@ void gather_wall_contacts(const geometry::CylinderPatchSpec& wall,
 // Appends the cavity floor's contacts (margin 0): the plane y = floor_y (unit: m), normal +y.
 void gather_floor_contacts(Real floor_y, const physics::Particles& particles, Real dt,
                            const SurfaceContactParams& params, physics::ContactSet& out);
+
+// Each chunk's rows of the wall's and the floor's parallel gathering (kept: no allocation once
+// sized).
+struct WallAndFloorChunks {
+  physics::ChunkRows<physics::ContactRow> wall, floor;
+};
+
+// gather_wall_contacts then gather_floor_contacts, each in parallel over fixed chunks of the
+// particles: the same rows in the same order on any thread count.
+void gather_wall_and_floor_contacts(const geometry::CylinderPatchSpec& wall, Real floor_y,
+                                    const physics::Particles& particles, Real dt,
+                                    const SurfaceContactParams& params, physics::ContactSet& out,
+                                    const physics::Executor& exec, WallAndFloorChunks& chunks);
 
 // Removes the rows of `out` from row `first` on whose particle is flagged in `held`: tissue the
 // forceps hold goes where the jaws take it, and the jaws are kept out of these surfaces (the

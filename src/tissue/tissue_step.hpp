@@ -17,9 +17,12 @@ physics::StepResult step_tissue(TissueWorld& world, physics::Executor& exec);
 // The two halves of step_tissue, for callers that act in between (the heart's collider):
 // engine step, XSPH and couplings; then surfaces, visual meshes and strand ends.
 physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& exec);
-void finish_tissue_step(TissueWorld& world);
+void finish_tissue_step(TissueWorld& world, const physics::Executor& exec);
+void finish_tissue_step(TissueWorld& world);  // on the calling thread alone
 
-// Recomputes vertex normals of the mesh objects and the fine visual meshes.
-void update_surfaces(TissueWorld& world);
+// Recomputes vertex normals of the mesh objects and the fine visual meshes: the heaviest mesh
+// beside the others on a team of two, the same bits on any thread count.
+void update_surfaces(TissueWorld& world, const physics::Executor& exec);
+void update_surfaces(TissueWorld& world);  // on the calling thread alone
 
 }  // namespace imasim::tissue
