@@ -30,6 +30,14 @@ void add_session_report(nlohmann::ordered_json& out, const session::SurgicalSess
   out["fascia_vertices"] = fascia.particle_count;
   out["fascia_triangles"] = fascia.triangles.size();
   out["held_particles"] = s.grasper.held.size();
+  // The instruments' stops: their checks of the heart searched, and answered by what the last
+  // search proved (session::ProbeClearance).
+  std::uint64_t searched = 0, skipped = 0;
+  for (const session::Station& st : s.stations) {
+    searched += st.heart_probes.searched;
+    skipped += st.heart_probes.skipped;
+  }
+  out["instrument_heart_checks"] = {{"searched", searched}, {"answered_by_bound", skipped}};
   nlohmann::ordered_json warnings = nlohmann::ordered_json::object();
   warnings["cuts_refused"] = s.refused_cuts;
   warnings["missed_tool_contacts"] = s.missed_tool_contacts;

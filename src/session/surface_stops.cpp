@@ -89,9 +89,11 @@ class Stopper {
   bool blocked(bool& heart, bool& wall) const {
     heart = wall = false;
     const geometry::CylinderPatchSpec& w = s_.scene.layout.wall;
-    for (const Vec3& x : probe_points(st_, electrode_)) {
-      heart = heart || tissue::heart_signed_distance(s_.scene.heart, x, kHeartSearch) < clearance_;
-      wall = wall || wall_radial(w, x).norm() >= w.radius - clearance_;
+    const std::array<Vec3, 3> probes = probe_points(st_, electrode_);
+    for (std::size_t k = 0; k < probes.size(); ++k) {
+      heart = heart || nearer_the_heart_than(s_.scene.heart, st_.heart_probes, k, probes[k],
+                                             clearance_, kHeartSearch);
+      wall = wall || wall_radial(w, probes[k]).norm() >= w.radius - clearance_;
     }
     return heart || wall;
   }

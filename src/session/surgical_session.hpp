@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "scene/thorax_scene.hpp"
+#include "session/probe_clearance.hpp"
 #include "surgery/cautery.hpp"
 #include "surgery/endoscope.hpp"
 #include "surgery/events.hpp"
@@ -87,6 +88,7 @@ struct Station {
   surgery::ContactSummary contact;
   std::array<bool, surgery::kTissueCount> touching{};
   bool blocked_by_heart = false, blocked_by_wall = false;
+  ProbeClearance heart_probes;  // a cache of the stops' heart searches (no effect on results)
   surgery::PedalMode pedal = surgery::PedalMode::off;
   Real power_w = 0;  // the cautery's power while the pedal is pressed (unit: W)
   surgery::PoseSource source = surgery::PoseSource::none;  // of the last pose given
