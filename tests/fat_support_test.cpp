@@ -132,18 +132,34 @@ TEST(FatSupport, TheFasciasRowsCarryTheStrandsBoundToIt) {
     }
     return k;
   };
+  // Each held vertex has three rows, in order: along its columns (k, returned per particle),
+  // then across them on two directions (2/3 k each, the fat's shear: fat_support.hpp), the three
+  // directions orthonormal.
   auto rows_on_fascia = [&] {
     std::vector<double> k(P.size(), 0);
+    std::vector<const physics::SupportRow*> rows;
     for (const physics::SupportRow& r : w.state.supports) {
       if (r.particle < fascia.first_particle ||
           r.particle >= fascia.first_particle + fascia.particle_count)
         continue;
-      EXPECT_EQ(k[r.particle], 0) << "one row a vertex";
-      k[r.particle] = 1 / r.compliance;
       EXPECT_NEAR(r.normal.norm(), 1, 1e-12);
       EXPECT_FALSE(r.pushes_only) << "the fat holds the fascia both ways";
-      EXPECT_LT(r.normal.y(), -0.5) << "away from the wall, above the cavity";
       EXPECT_NEAR(r.normal.dot(P.rest_position[r.particle]), r.offset, 1e-15);
+      rows.push_back(&r);
+    }
+    EXPECT_EQ(rows.size() % 3, 0u);
+    for (std::size_t n = 0; n + 2 < rows.size(); n += 3) {
+      const physics::SupportRow &along = *rows[n], &a = *rows[n + 1], &b = *rows[n + 2];
+      EXPECT_EQ(a.particle, along.particle);
+      EXPECT_EQ(b.particle, along.particle);
+      EXPECT_EQ(k[along.particle], 0) << "three rows a vertex";
+      k[along.particle] = 1 / along.compliance;
+      EXPECT_LT(along.normal.y(), -0.5) << "away from the wall, above the cavity";
+      EXPECT_NEAR(a.compliance, 1.5 * along.compliance, 1e-12 * a.compliance);
+      EXPECT_NEAR(b.compliance, 1.5 * along.compliance, 1e-12 * b.compliance);
+      EXPECT_NEAR(a.normal.dot(along.normal), 0, 1e-12);
+      EXPECT_NEAR(b.normal.dot(along.normal), 0, 1e-12);
+      EXPECT_NEAR(a.normal.dot(b.normal), 0, 1e-12);
     }
     return k;
   };

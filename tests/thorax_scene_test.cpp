@@ -15,9 +15,11 @@
 namespace imasim::scene {
 namespace {
 
-ThoraxScene make(bool beating) {
+// columns: the vessel's fat as columns (`ima_fat.resists_compression`, tissue/fat_support.hpp).
+ThoraxScene make(bool beating, bool columns = false) {
   ThoraxSceneParams p = default_thorax_scene_params();
   p.playback.beating = beating;
+  p.patch.ima_fat.resists_compression = columns;
   return make_thorax_scene(p);
 }
 
@@ -41,8 +43,8 @@ TEST(ThoraxScene, NoTissueParticleInsideTheHeartAfterSecondsOfBeating) {
 
 // Largest displacement over the last beat of each IMA particle from its position at that beat's
 // start, and the particle's distance from the heart.
-std::vector<std::pair<double, double>> ima_motion(bool beating) {
-  ThoraxScene s = make(beating);
+std::vector<std::pair<double, double>> ima_motion(bool beating, bool columns = false) {
+  ThoraxScene s = make(beating, columns);
   physics::Executor exec(2);
   for (int n = 0; n < 240; ++n)
     EXPECT_TRUE(step_thorax_scene(s, exec).ok());  // 1.5 beats
@@ -79,6 +81,24 @@ TEST(ThoraxScene, HeartMotionReachesTheImaAndFallsWithDistance) {
   EXPECT_GT(near, 5e-4);       // sub-millimetre to millimetres of motion near the heart
   EXPECT_GT(near, 1.5 * far);  // less far from it
   EXPECT_GT(far, 0.0);
+}
+
+// Mean motion over a beat of the third of the IMA's particles nearest the heart.
+double near_motion(std::vector<std::pair<double, double>> motion) {
+  std::sort(motion.begin(), motion.end());
+  const std::size_t third = motion.size() / 3;
+  double near = 0;
+  for (std::size_t k = 0; k < third; ++k)
+    near += motion[k].second / double(third);
+  return near;
+}
+
+// The fat's columns hold the vessel where the heart's drive puts it (its reference), not at its
+// rest: it moves over a beat as it does without them, within 10 %.
+TEST(ThoraxScene, TheFatsColumnsHoldTheVesselWhereTheHeartsDrivePutsIt) {
+  const double free = near_motion(ima_motion(true)), held = near_motion(ima_motion(true, true));
+  EXPECT_GT(free, 5e-4);
+  EXPECT_NEAR(held, free, 0.1 * free);
 }
 
 TEST(ThoraxScene, StaticHeartTransmitsNoMotion) {

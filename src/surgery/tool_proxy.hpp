@@ -35,7 +35,7 @@ struct ProxyParams {
   // Eq. 17's k_d per tissue, indexed by Tissue (unit: N/m), copied from the force law by whoever
   // sets up the haptics (docs/haptics.md): the stiffness each tissue is rendered at
   // (console/local_model_of.hpp).
-  std::array<Real, kTissueCount> stiffness{Real(4.3), Real(4.3), 200, Real(4.3), 400, 1000};
+  std::array<Real, kTissueCount> stiffness{Real(4.3), Real(4.3), 34, Real(4.3), 400, 1000};
   // The coupling, one for every tissue: stiff beside the tissues' k_d, so the hand feels what the
   // tissue pushes (unit: N/m), and damped to a 5 ms time constant (unit: N s/m).
   Real coupling_stiffness = 1000;

@@ -10,7 +10,7 @@ void add_support(TissueWorld& w, std::uint32_t i, const Vec3& direction, Real st
                  bool pushes_only) {
   const physics::Particles& P = w.state.particles;
   if (!(stiffness > 0) || P.inverse_mass[i] == 0) return;
-  const Real offset = direction.dot(P.rest_position[i]);
+  const Real offset = direction.dot(w.reference[i]);
   const Real gap = direction.dot(P.position[i]) - offset;
   const Real reach = kSupportReach + 2 * P.velocity[i].norm() * w.model.solver.dt;
   if (pushes_only && gap > reach) return;
@@ -50,7 +50,15 @@ void gather_fat_supports(TissueWorld& w) {
       const Real k = w.support_stiffness[i];
       if (k > 0) {
         const Real size = w.support_direction[i].norm();
-        if (size > 0) add_support(w, i, w.support_direction[i] / size, k, false);
+        if (size > 0) {
+          // Along the columns k, across them kAcrossColumns k, both ways: three rows on
+          // orthonormal directions make the layer's hold a spring in every direction.
+          const Vec3 along = w.support_direction[i] / size;
+          const Vec3 across = along.unitOrthogonal();
+          add_support(w, i, along, k, false);
+          add_support(w, i, across, kAcrossColumns * k, false);
+          add_support(w, i, along.cross(across), kAcrossColumns * k, false);
+        }
       }
       w.support_stiffness[i] = 0;
       w.support_direction[i] = Vec3::Zero();

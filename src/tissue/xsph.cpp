@@ -12,6 +12,13 @@ namespace {
 using VS = physics::simd::V<Real>;
 constexpr std::uint32_t kLanes = physics::simd::kLanes<Real>;
 
+// A batch whose lane k is f(k), built in registers (physics/simd.hpp).
+template <class F>
+VS lanes(const F& f) {
+  return physics::simd::lanes<Real>(
+      [&](std::size_t k) { return f(static_cast<std::uint32_t>(k)); });
+}
+
 // W_ij = (1 - r / h)^2 for r < h, else 0; r = |x_j - x_i| is the same both ways, so W_ij = W_ji.
 // Without a branch: pairs cross r = h at random as strands move, and a mispredicted branch
 // would serialise the square roots.
@@ -33,18 +40,19 @@ void pair_kernels(const StrandSet& set, const Vec3* x, Real* W, std::uint32_t be
   const Real h = set.xsph_radius;
   std::uint32_t p = begin;
   for (; p + kLanes <= end; p += kLanes) {
-    alignas(physics::simd::kBytes) Real dx[kLanes], dy[kLanes], dz[kLanes], live[kLanes];
-    for (std::uint32_t k = 0; k < kLanes; ++k) {
-      const Vec3 d = x[first + upper[p + k]] - x[first + lower[p + k]];
-      dx[k] = d.x(), dy[k] = d.y(), dz[k] = d.z();
-      live[k] = diameter[lower[p + k]] != 0 && diameter[upper[p + k]] != 0 ? 1 : 0;
-    }
-    const VS vx = physics::simd::load(dx), vy = physics::simd::load(dy),
-             vz = physics::simd::load(dz);
+    const VS vx = lanes(
+        [&](std::uint32_t k) { return x[first + upper[p + k]].x() - x[first + lower[p + k]].x(); });
+    const VS vy = lanes(
+        [&](std::uint32_t k) { return x[first + upper[p + k]].y() - x[first + lower[p + k]].y(); });
+    const VS vz = lanes(
+        [&](std::uint32_t k) { return x[first + upper[p + k]].z() - x[first + lower[p + k]].z(); });
+    const VS live = lanes([&](std::uint32_t k) {
+      return diameter[lower[p + k]] != 0 && diameter[upper[p + k]] != 0 ? Real(1) : Real(0);
+    });
     const VS r = physics::simd::sqrt<Real>(vx * vx + vy * vy + vz * vz);
     VS q = 1 - r / h;
     q = q > 0 ? q : VS{} + 0;  // std::max(0, q)
-    const VS w = physics::simd::load(live) != 0 ? q * q : VS{} + 0;
+    const VS w = live != 0 ? q * q : VS{} + 0;
     for (std::uint32_t k = 0; k < kLanes; ++k)
       W[p + k] = w[k];
   }
@@ -63,13 +71,9 @@ void pair_shares(const StrandSet& set, const Real* W, const Real* S, Real* share
   const Real c = set.xsph_coefficient;
   std::uint32_t p = begin;
   for (; p + kLanes <= end; p += kLanes) {
-    alignas(physics::simd::kBytes) Real si[kLanes], sj[kLanes];
-    for (std::uint32_t k = 0; k < kLanes; ++k) {
-      si[k] = S[first + lower[p + k]];
-      sj[k] = S[first + upper[p + k]];
-    }
-    const VS w = physics::simd::load(W + p), a = physics::simd::load(si),
-             b = physics::simd::load(sj);
+    const VS w = physics::simd::load(W + p);
+    const VS a = lanes([&](std::uint32_t k) { return S[first + lower[p + k]]; });
+    const VS b = lanes([&](std::uint32_t k) { return S[first + upper[p + k]]; });
     const auto positive = w > 0;
     const VS larger = a < b ? b : a;  // std::max(a, b)
     const VS s = c * w / (positive ? larger : VS{} + 1);
