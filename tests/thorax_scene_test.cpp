@@ -69,8 +69,9 @@ std::vector<std::pair<double, double>> ima_motion(bool beating, bool columns = f
   return out;
 }
 
-TEST(ThoraxScene, HeartMotionReachesTheImaAndFallsWithDistance) {
-  auto motion = ima_motion(true);
+// Mean motion over a beat of the third of the IMA's particles nearest the heart (first) and of
+// the third farthest from it (second).
+std::pair<double, double> near_and_far_motion(std::vector<std::pair<double, double>> motion) {
   std::sort(motion.begin(), motion.end());  // by distance from the heart
   const std::size_t third = motion.size() / 3;
   double near = 0, far = 0;
@@ -78,25 +79,21 @@ TEST(ThoraxScene, HeartMotionReachesTheImaAndFallsWithDistance) {
     near += motion[k].second / double(third);
   for (std::size_t k = motion.size() - third; k < motion.size(); ++k)
     far += motion[k].second / double(third);
+  return {near, far};
+}
+
+TEST(ThoraxScene, HeartMotionReachesTheImaAndFallsWithDistance) {
+  const auto [near, far] = near_and_far_motion(ima_motion(true));
   EXPECT_GT(near, 5e-4);       // sub-millimetre to millimetres of motion near the heart
   EXPECT_GT(near, 1.5 * far);  // less far from it
   EXPECT_GT(far, 0.0);
 }
 
-// Mean motion over a beat of the third of the IMA's particles nearest the heart.
-double near_motion(std::vector<std::pair<double, double>> motion) {
-  std::sort(motion.begin(), motion.end());
-  const std::size_t third = motion.size() / 3;
-  double near = 0;
-  for (std::size_t k = 0; k < third; ++k)
-    near += motion[k].second / double(third);
-  return near;
-}
-
 // The fat's columns hold the vessel where the heart's drive puts it (its reference), not at its
 // rest: it moves over a beat as it does without them, within 10 %.
 TEST(ThoraxScene, TheFatsColumnsHoldTheVesselWhereTheHeartsDrivePutsIt) {
-  const double free = near_motion(ima_motion(true)), held = near_motion(ima_motion(true, true));
+  const double free = near_and_far_motion(ima_motion(true)).first;
+  const double held = near_and_far_motion(ima_motion(true, true)).first;
   EXPECT_GT(free, 5e-4);
   EXPECT_NEAR(held, free, 0.1 * free);
 }
