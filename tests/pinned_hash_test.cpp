@@ -24,7 +24,7 @@ constexpr bool kPortable = false;
 #endif
 
 constexpr std::uint64_t kClothHash = 0x4b3e03bcb505667dull;
-constexpr std::uint64_t kSessionHash = 0xd744eaf496d6dfa0ull;
+constexpr std::uint64_t kSessionHash = 0x879a7d202769539aull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

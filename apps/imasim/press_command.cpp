@@ -23,6 +23,10 @@ std::shared_ptr<PressOptions> add_press_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str()
       ->check(finite_range(0.01, 15));
+  cmd->add_option("--hold-s", opt->hold_s,
+                  "Held at each depth before the force is read, its last 0.1 s averaged (s)")
+      ->capture_default_str()
+      ->check(finite_range(0.2, 60));
   cmd->add_option("--scene", opt->scene_file, "Scene file (TOML); default: the built-in scene")
       ->check(non_empty());
   cmd->add_option("--threads", opt->threads, "Worker threads (0 = all cores)")
@@ -40,9 +44,11 @@ int run_press_command(const PressOptions& o) {
   for (const double mm : o.depths_mm)
     depths.push_back(mm * 1e-3);
   physics::Executor exec(o.threads);
+  console::PressSettings settings;
+  settings.settle_s = o.hold_s;
   console::PressResult r;
   try {
-    r = console::press_tissue(params, tissue, depths, console::PressSettings{}, exec);
+    r = console::press_tissue(params, tissue, depths, settings, exec);
   } catch (const std::exception& e) {
     std::cerr << "imasim press: " << e.what() << '\n';
     return 2;

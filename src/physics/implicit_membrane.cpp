@@ -1,8 +1,11 @@
 #include "physics/implicit_membrane.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "physics/dihedral_constraint.hpp"
 
 namespace imasim::physics {
 
@@ -51,12 +54,14 @@ FrictionTerms friction_potential(Real mu_lambda, Real slip, Real stick_slip) {
 
 ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std::uint8_t>& fixed,
                                    std::vector<MembraneEdge> edges, Real h,
-                                   std::vector<MembraneHinge> hinges, std::uint32_t bodies)
+                                   std::vector<MembraneHinge> hinges, std::uint32_t bodies,
+                                   std::vector<MembraneDihedral> dihedrals)
     : mass_(std::move(mass)),
       edges_(std::move(edges)),
       h_(h),
       hinges_(std::move(hinges)),
-      body_count_(bodies) {
+      body_count_(bodies),
+      dihedrals_(std::move(dihedrals)) {
   const std::size_t n = mass_.size();
   if (fixed.size() != n)
     throw std::invalid_argument("implicit membrane: " + std::to_string(fixed.size()) +
@@ -93,6 +98,18 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
                                   ": stiffness must not be negative");
   }
 
+  for (std::size_t k = 0; k < dihedrals_.size(); ++k) {
+    const MembraneDihedral& d = dihedrals_[k];
+    const std::string name = "implicit membrane: dihedral " + std::to_string(k);
+    for (std::uint32_t p = 0; p < 4; ++p) {
+      if (d.v[p] >= n) throw std::invalid_argument(name + " names a vertex out of range");
+      for (std::uint32_t q = p + 1; q < 4; ++q)
+        if (d.v[p] == d.v[q]) throw std::invalid_argument(name + " names a vertex twice");
+    }
+    if (!(d.stiffness >= 0) || !std::isfinite(d.rest_angle))
+      throw std::invalid_argument(name + ": stiffness must not be negative, the rest angle finite");
+  }
+
   // The pattern: a block on every free row's diagonal, between the free ends of every edge and
   // between every two free vertices of a hinge, cut or not, so that it never changes; a body's
   // row joins every free vertex.
@@ -108,6 +125,10 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
     for (std::uint32_t p = 0; p < 4; ++p)
       for (std::uint32_t q = p + 1; q < 4; ++q)
         join(free_index_[hinge.v[p]], free_index_[hinge.v[q]]);
+  for (const MembraneDihedral& d : dihedrals_)
+    for (std::uint32_t p = 0; p < 4; ++p)
+      for (std::uint32_t q = p + 1; q < 4; ++q)
+        join(free_index_[d.v[p]], free_index_[d.v[q]]);
   for (std::uint32_t b = 0; b < body_count_; ++b)
     for (std::uint32_t a = 0; a < free_rows; ++a)
       join(a, free_rows + b);
@@ -144,6 +165,14 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
         hinge_blocks_[k][4 * p + q] =
             q < p ? kFixed : block(free_index_[hinges_[k].v[p]], free_index_[hinges_[k].v[q]]);
   hinge_removed_.assign(hinges_.size(), 0);
+  dihedral_blocks_.resize(dihedrals_.size());
+  for (std::size_t k = 0; k < dihedrals_.size(); ++k)
+    for (std::uint32_t p = 0; p < 4; ++p)
+      for (std::uint32_t q = 0; q < 4; ++q)
+        dihedral_blocks_[k][4 * p + q] =
+            q < p ? kFixed
+                  : block(free_index_[dihedrals_[k].v[p]], free_index_[dihedrals_[k].v[q]]);
+  dihedral_removed_.assign(dihedrals_.size(), 0);
   body_diagonal_.resize(body_count_);
   body_vertex_.assign(body_count_, std::vector<Block>(free_rows));
   for (std::uint32_t b = 0; b < body_count_; ++b) {
@@ -222,6 +251,19 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
     for (std::uint32_t p = 0; p < 4; ++p) {
       const std::uint32_t a = free_index_[hinge.v[p]];
       if (a != kFixed) gradient.segment<3>(3 * a) += hinge.w[p] * kappa;
+    }
+  }
+  for (std::size_t k = 0; k < dihedrals_.size(); ++k) {
+    if (dihedral_removed_[k]) continue;
+    const MembraneDihedral& d = dihedrals_[k];
+    const DihedralEval<Real> e =
+        evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]], d.rest_angle);
+    if (!e.valid) continue;  // a degenerate wing: its angle, and so its bending, undefined
+    phi += Real(0.5) * d.stiffness * e.value * e.value;
+    const Real moment = d.stiffness * e.value;  // k (theta - theta_0) (unit: N m)
+    for (std::uint32_t p = 0; p < 4; ++p) {
+      const std::uint32_t a = free_index_[d.v[p]];
+      if (a != kFixed) gradient.segment<3>(3 * a) += moment * e.grad[p];
     }
   }
   const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
@@ -303,6 +345,22 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
     add(blocks_[e].ii, k, 1);
     add(blocks_[e].jj, k, 1);
     add(blocks_[e].ij, k, -1);
+  }
+  // The dihedrals' Gauss-Newton blocks, k g_p g_q^T: a pair's block is stored as A(lo, hi), so
+  // the one whose row is the higher block row takes the transpose.
+  for (std::size_t k = 0; k < dihedrals_.size(); ++k) {
+    if (dihedral_removed_[k]) continue;
+    const MembraneDihedral& d = dihedrals_[k];
+    const DihedralEval<Real> e =
+        evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]], d.rest_angle);
+    if (!e.valid) continue;
+    for (std::uint32_t p = 0; p < 4; ++p) {
+      for (std::uint32_t q = p; q < 4; ++q) {
+        const std::uint32_t a = free_index_[d.v[p]], b = free_index_[d.v[q]];
+        const Mat3 k_pq = d.stiffness * e.grad[p] * e.grad[q].transpose();
+        add(dihedral_blocks_[k][4 * p + q], a <= b ? k_pq : Mat3(k_pq.transpose()), 1);
+      }
+    }
   }
   for (std::uint32_t b = 0; b < body_count_; ++b)
     add(body_diagonal_[b], body_weight_[b] * Mat3::Identity(), 1);
@@ -622,6 +680,12 @@ void ImplicitMembrane::remove_hinge(std::size_t k) {
   hinge_removed_[k] = 1;
   factored_ = false;
   constant_stale_ = true;
+}
+
+void ImplicitMembrane::remove_dihedral(std::size_t k) {
+  if (k >= dihedrals_.size()) return;
+  dihedral_removed_[k] = 1;
+  factored_ = false;
 }
 
 void ImplicitMembrane::scale_edge(std::size_t e, Real factor) {

@@ -52,6 +52,19 @@ struct MembraneHinge {
   Real stiffness = 0;       // k = D |e|^2 / (A_1 + A_2) (unit: N m)
 };
 
+// Bending across an interior edge (v[2], v[3]) between the wings v[0] and v[1], for a surface
+// curved at rest (a tube's wall): E = k / 2 (theta - theta_0)^2, theta the signed dihedral angle of
+// eq. 3 (physics/dihedral_constraint.hpp: the XPBD dihedral row's C, the same energy that row's
+// compliance 1 / k gives). Rotating the hinge leaves theta as it is, so a curved surface carried
+// round rigidly feels nothing, which MembraneHinge's constant curvature vector cannot give when it
+// is not zero at rest. Its Hessian is taken as Gauss-Newton's, k grad theta grad theta^T: positive
+// semi-definite, exact at the rest angle, and the line search keeps each step a descent.
+struct MembraneDihedral {
+  std::array<std::uint32_t, 4> v{};  // wing0, wing1, edge start, edge end (DihedralRow's order)
+  Real rest_angle = 0;               // theta_0 (unit: rad)
+  Real stiffness = 0;                // k (unit: N m)
+};
+
 inline constexpr std::uint32_t kNoMembraneBody = 0xffffffffu;
 
 // A rigid body solved with the membrane: a tool's proxy, held to its device by a spring and a
@@ -209,9 +222,10 @@ class ImplicitMembrane {
   // Throws std::invalid_argument naming what is wrong (sizes, a free vertex without mass, an
   // edge out of range, a stiffness or h not positive, a linear stiffness below the toe's).
   // bodies: how many MembraneBody the loads of every step bring (each solved with the membrane).
+  // dihedrals: bending of a surface curved at rest, beside or instead of the flat hinges.
   ImplicitMembrane(std::vector<Real> mass, const std::vector<std::uint8_t>& fixed,
                    std::vector<MembraneEdge> edges, Real h, std::vector<MembraneHinge> hinges = {},
-                   std::uint32_t bodies = 0);
+                   std::uint32_t bodies = 0, std::vector<MembraneDihedral> dihedrals = {});
 
   // One step of length h. x, v: every vertex (unit: m, m/s); the fixed ones' x are their
   // positions at the step's end and are left as they are, as are their v. Throws
@@ -233,6 +247,7 @@ class ImplicitMembrane {
   // A cut: edge e pulls no more; hinge k bends no more.
   void remove_edge(std::size_t e);
   void remove_hinge(std::size_t k);
+  void remove_dihedral(std::size_t k);
   // Coagulation: edge e's toe and linear stiffness times `factor` (> 0).
   void scale_edge(std::size_t e, Real factor);
   std::span<const MembraneEdge> edges() const { return edges_; }
@@ -294,7 +309,10 @@ class ImplicitMembrane {
   std::vector<Real> body_weight_;  // (c / h + k) of each body (unit: N/m)
   std::vector<std::uint8_t> hinge_removed_;
   std::vector<std::array<Block, 16>> hinge_blocks_;  // (a, b) at 4 a + b
-  std::vector<BlockCholesky::Pair> pairs_;           // the off-diagonal blocks' rows, as analysed
+  std::vector<MembraneDihedral> dihedrals_;
+  std::vector<std::uint8_t> dihedral_removed_;
+  std::vector<std::array<Block, 16>> dihedral_blocks_;  // as hinge_blocks_
+  std::vector<BlockCholesky::Pair> pairs_;  // the off-diagonal blocks' rows, as analysed
   // The active set, per free row: the contact holding it (kNone: none), the one a trial put it on,
   // whether it was let go this step, and the rows the kept factorisation held.
   std::vector<std::uint32_t> held_, pending_;

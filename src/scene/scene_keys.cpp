@@ -266,6 +266,8 @@ const SceneKey kKeys[] = {
      256, "visual tube: vertices per ring"},
     {"vessel.fine_rings", CountRef([](Params& p) { return &p.patch.vessel.fine_rings; }), 2, 16384,
      "visual tube: rings"},
+    {"vessel.coarse", BoolRef([](Params& p) { return &p.patch.vessel.object.coarse; }), 0, 0,
+     "solved in the coarse band (solver.coarse_stride, coarse_sweeps); false: every substep"},
     {"vessel.total_mass_kg", RealRef([](Params& p) { return &p.patch.vessel.object.total_mass; }),
      1e-6, 10, "M_total of eq. 5"},
     {"vessel.youngs_modulus_pa",
