@@ -2,7 +2,7 @@
 // collider and boundary drive), on 1 or 2 threads, with the coarse objects swept 3 times (the
 // default) or once.
 // BM_SceneStepImplicitFascia: the same (beating, one thread) with the fascia solved by the
-// implicit membrane step (scene/implicit_fascia_scene.hpp): at the toe's modulus throughout
+// implicit membrane step (scene/implicit_mesh_scene.hpp): at the toe's modulus throughout
 // (law:0, the XPBD rows' material) or with the fascia's law (law:1, 2.65 MPa past 5 % strain).
 // Counters: Newton iterations and refactorisations of the fascia's last step.
 // BM_ImplicitFasciaRefit: what a cut of the implicit fascia costs on top of the cut itself, the

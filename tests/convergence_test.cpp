@@ -149,7 +149,7 @@ TEST(Convergence, TheFasciaSolvedImplicitlyRestsWhereConvergedXpbdRests) {
 // The default scene with its fascia solved by the implicit step at the toe's modulus (the XPBD
 // rows' material) rests where the XPBD scene's 4x finer solve rests: fascia within 5 %, the
 // vessel within 0.1 mm, at rest; its contacts with the wall and the fat's strands read through
-// the staggered step (scene/implicit_fascia_scene.hpp).
+// the staggered step (scene/implicit_mesh_scene.hpp).
 TEST(Convergence, TheDefaultSceneWithTheImplicitFasciaRestsWhereTheFinerXpbdSolveRests) {
   const std::uint32_t n = scene::default_thorax_scene_params().patch.solver.substeps;
   const physics::MembraneMaterial m = tissue::default_fascia_membrane();

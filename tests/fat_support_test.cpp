@@ -202,11 +202,27 @@ TEST(FatSupport, TheFasciasRowsCarryTheStrandsBoundToIt) {
               1e-9 * set.column_stiffness[s] * length / height);
 }
 
-TEST(FatSupport, TheDefaultStrandsGiveNoRows) {
+// By default the IMA's fat has its columns (it holds the vessel and pushes back on a hook) and
+// the fascia's has none: every row is the vessel's or its fat's.
+TEST(FatSupport, TheDefaultStrandsGiveRowsForTheVesselsFatOnly) {
   tissue::ThoracicPatch patch =
       tissue::make_thoracic_patch(tissue::default_thoracic_patch_params());
   tissue::gather_fat_supports(patch.world);
-  EXPECT_TRUE(patch.world.state.supports.empty());
+  const tissue::TissueWorld& w = patch.world;
+  const tissue::MeshObject& ima = w.meshes[patch.ima];
+  const tissue::StrandSet& fat = w.strands[patch.ima_fat];
+  const std::uint32_t fat_end = fat.first_particle + fat.strand_count * (fat.segments + 1);
+  std::size_t vessel_rows = 0;
+  for (const physics::SupportRow& r : w.state.supports) {
+    const bool of_vessel =
+        r.particle >= ima.first_particle && r.particle < ima.first_particle + ima.particle_count;
+    const bool of_its_fat = r.particle >= fat.first_particle && r.particle < fat_end;
+    EXPECT_TRUE(of_vessel || of_its_fat) << "particle " << r.particle;
+    vessel_rows += of_vessel;
+  }
+  // Three rows (along the columns, two across) for each vertex a strand is bound near.
+  EXPECT_GT(vessel_rows, ima.particle_count);
+  EXPECT_EQ(vessel_rows % 3, 0u);
 }
 
 // A column needs a base that does not move: strands to the fascia (dynamic) are refused, by

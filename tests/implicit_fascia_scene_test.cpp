@@ -1,5 +1,5 @@
 // The thorax scene with its fascia solved by the implicit membrane step
-// (scene/implicit_fascia_scene.hpp): the fascia's XPBD rows leave the constraint system, its
+// (scene/implicit_mesh_scene.hpp): the fascia's XPBD rows leave the constraint system, its
 // contacts leave the XPBD set for the implicit step's planes, its particles keep their mass
 // between steps, and the beating scene steps with no tissue inside the heart. The rest against
 // converged XPBD is in convergence_test.cpp (label physics).
@@ -120,8 +120,8 @@ double cut_opening(const physics::StiffeningMembrane* material, int steps_after 
     std::size_t free = 0;
     for (std::uint32_t k = 0; k < fascia.particle_count; ++k)
       free += !P.is_fixed(first + k);
-    EXPECT_EQ(s.implicit_fascia->fascia.membrane->free_count(), free);
-    EXPECT_EQ(s.implicit_fascia->fascia.x.size(), fascia.particle_count);
+    EXPECT_EQ(s.implicit_fascia->solver.membrane->free_count(), free);
+    EXPECT_EQ(s.implicit_fascia->solver.x.size(), fascia.particle_count);
   }
   for (int n = 0; n < steps_after; ++n) {
     EXPECT_TRUE(step_thorax_scene(s, exec).ok()) << "step " << n;
@@ -172,7 +172,7 @@ TEST(ImplicitFasciaScene, TheScenesLawReachesTheSolversSprings) {
   EXPECT_EQ(law.toe_modulus, params.patch.fascia.object.membrane->youngs_modulus);
   EXPECT_EQ(law.linear_modulus, Real(1e6));
   EXPECT_EQ(law.toe_strain, Real(0.08));
-  const physics::MembraneEdge& edge = s.implicit_fascia->fascia.membrane->edges().front();
+  const physics::MembraneEdge& edge = s.implicit_fascia->solver.membrane->edges().front();
   EXPECT_EQ(edge.spring.toe_strain, Real(0.08));
   // k_e = E t sum A / |e|^2 for both regimes: their ratio is the moduli's.
   EXPECT_NEAR(edge.spring.linear_stiffness / edge.spring.toe_stiffness,
@@ -191,7 +191,7 @@ double sag_after_coagulation(Real factor) {
   physics::Executor exec(1);
   if (factor > 1) {
     const std::vector<std::uint8_t> all(s.patch.world.state.particles.size(), 1);
-    coagulate_scene_fascia(s, all, factor);
+    coagulate_scene_implicit(s, all, factor);
   }
   for (int n = 0; n < 200; ++n)
     EXPECT_TRUE(step_thorax_scene(s, exec).ok());

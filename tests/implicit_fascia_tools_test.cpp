@@ -1,4 +1,4 @@
-// The instruments on the implicit fascia (scene/implicit_fascia_scene.hpp): a proxy's contact row
+// The instruments on the implicit fascia (scene/implicit_mesh_scene.hpp): a proxy's contact row
 // and a proxy's hold on a fascia vertex are solved with the fascia, the proxy a body of the solve
 // on its coupling's spring and damper; the XPBD step then carries the fascia's force on the proxy,
 // and the rows and holds get the implicit step's impulses, so the felt force reads them as it

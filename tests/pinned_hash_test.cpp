@@ -24,7 +24,7 @@ constexpr bool kPortable = false;
 #endif
 
 constexpr std::uint64_t kClothHash = 0x4b3e03bcb505667dull;
-constexpr std::uint64_t kSessionHash = 0x879a7d202769539aull;
+constexpr std::uint64_t kSessionHash = 0xf9ab6c904c402c93ull;
 
 std::string hex(std::uint64_t h) {
   char text[20];

@@ -120,7 +120,7 @@ TEST(SceneFileHostile, ScenesTooCostlyToStepAreRefused) {
                "bad.toml:2: key 'vessel.fine_rings': the scene would have up to ");
   expect_first("[solver]\nsubsteps = 256\n[fascia]\nnx = 60\nny = 60\n",
                "bad.toml:4: key 'fascia.nx': substeps x iterations = 256 x 1 = 256 sweeps per "
-               "step over up to 43818 particles: 11217408 particle sweeps per step, above the "
+               "step over up to 46938 particles: 12016128 particle sweeps per step, above the "
                "limit of 8000000");
 }
 

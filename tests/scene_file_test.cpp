@@ -145,6 +145,12 @@ TEST(SceneFile, BrokenFilesNameFileLineAndKey) {
        "the toe's (youngs_modulus_pa 1e+05)"},
       {"[fascia]\nsolver = \"newton\"\n",
        "bad.toml:2: key 'fascia.solver': expected \"xpbd\" or \"implicit\", got \"newton\""},
+      // The vessel's rate band is XPBD's: with the implicit vessel (the default) it changes
+      // nothing.
+      {"[vessel]\ncoarse = false\n",
+       "bad.toml:2: key 'vessel.coarse': the implicit vessel has no rows in the step's rate bands"},
+      {"[vessel]\nsolver = \"newton\"\n",
+       "bad.toml:2: key 'vessel.solver': expected \"xpbd\" or \"implicit\", got \"newton\""},
       {"\n[fasica]\nnx = 3\n", "bad.toml:2: unknown table 'fasica'; did you mean 'fascia'?"},
       {"heart_rate_bpm = 70\n",
        "bad.toml:1: key 'heart_rate_bpm': not inside a table; did you mean "
@@ -175,6 +181,21 @@ TEST(SceneFile, TheImplicitFasciaTakesItsLawFromTheFile) {
   const ThoraxSceneParams q = parse_scene(print_scene(p), "printed.toml");
   EXPECT_EQ(q.fascia_solver, "implicit");
   EXPECT_EQ(q.fascia_linear_modulus, Real(1e6));
+}
+
+TEST(SceneFile, TheVesselsSolverComesFromTheFile) {
+  EXPECT_EQ(default_thorax_scene_params().vessel_solver, "implicit");
+  const ThoraxSceneParams p =
+      parse_scene("[vessel]\nsolver = \"xpbd\"\ncoarse = false\n", "s.toml");
+  EXPECT_EQ(p.vessel_solver, "xpbd");
+  EXPECT_FALSE(p.patch.vessel.object.coarse);
+  // Printed and read again, both are kept; the default's print comments out the band it ignores.
+  const ThoraxSceneParams q = parse_scene(print_scene(p), "printed.toml");
+  EXPECT_EQ(q.vessel_solver, "xpbd");
+  EXPECT_FALSE(q.patch.vessel.object.coarse);
+  const std::string printed = print_scene(default_thorax_scene_params());
+  EXPECT_EQ(printed.find("\ncoarse ="), std::string::npos);
+  EXPECT_NE(printed.find("\n# coarse = true"), std::string::npos);
 }
 
 TEST(SceneFile, ReportsEveryErrorInFileOrder) {

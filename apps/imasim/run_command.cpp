@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "cli_checks.hpp"
@@ -68,6 +69,25 @@ constexpr double kMaxRunSteps = 4e6;
 constexpr double kAnnouncedRunSeconds = 60;
 constexpr double kSecondsPerParticleSweep = 30e-9;
 constexpr std::uint64_t kMaxPatientSeed = 9'000'000'000'000'000'000u;
+
+// A mesh's solver in run's JSON ("xpbd" or "implicit"), and the implicit one's Newton counts:
+// steps left above the tolerance, the largest residual, per step its iterations and
+// factorisations (and why: the held vertices changed; the rest the kept matrix converged too
+// slowly), the Newton steps the line search cut short, the rebuilds after a cut.
+void add_implicit_report(nlohmann::ordered_json& out, const std::string& name,
+                         const std::optional<scene::SceneImplicitMesh>& mesh) {
+  out[name + "_solver"] = mesh ? "implicit" : "xpbd";
+  if (!mesh) return;
+  const scene::SceneImplicitMesh& f = *mesh;
+  const double steps = double(std::max<std::uint64_t>(f.steps, 1));
+  out[name + "_unsolved_steps"] = f.unsolved_steps;
+  out[name + "_largest_residual_n"] = f.largest_residual;
+  out[name + "_newton_iterations_per_step"] = double(f.iterations) / steps;
+  out[name + "_factorizations_per_step"] = double(f.factorizations) / steps;
+  out[name + "_active_set_factorizations_per_step"] = double(f.active_set_factorizations) / steps;
+  out[name + "_shortened_iterations_per_step"] = double(f.shortened_iterations) / steps;
+  out[name + "_refits"] = f.refits;
+}
 
 }  // namespace
 
@@ -545,23 +565,10 @@ int run_run_command(const RunOptions& o) {
   out["chest_wall_motion_max_m"] = chest_wall_motion;
   out["heart_contacts_max"] = max_contacts;
   out["missed_heart_contacts"] = missed_heart_contacts;  // a warning: should stay 0
-  // The fascia's solver, and with the implicit one the steps whose Newton solve ran out of
+  // Each mesh's solver, and with the implicit one the steps whose Newton solve ran out of
   // iterations above its tolerance (a warning: rare buckling of slack fascia).
-  out["fascia_solver"] = scene.implicit_fascia ? "implicit" : "xpbd";
-  if (scene.implicit_fascia) {
-    out["fascia_unsolved_steps"] = scene.implicit_fascia->unsolved_steps;
-    out["fascia_largest_residual_n"] = scene.implicit_fascia->largest_residual;
-    const scene::SceneImplicitFascia& f = *scene.implicit_fascia;
-    const double fascia_steps = double(std::max<std::uint64_t>(f.steps, 1));
-    out["fascia_newton_iterations_per_step"] = double(f.iterations) / fascia_steps;
-    out["fascia_factorizations_per_step"] = double(f.factorizations) / fascia_steps;
-    // Why: the held vertices changed (the rest: the kept matrix converged too slowly), and how
-    // many Newton steps the line search cut short.
-    out["fascia_active_set_factorizations_per_step"] =
-        double(f.active_set_factorizations) / fascia_steps;
-    out["fascia_shortened_iterations_per_step"] = double(f.shortened_iterations) / fascia_steps;
-    out["fascia_refits"] = f.refits;
-  }
+  add_implicit_report(out, "fascia", scene.implicit_fascia);
+  add_implicit_report(out, "vessel", scene.implicit_vessel);
   out["ms_per_step_median"] = median_ms;
   out["profile_ms_per_step"] = profile_report(profile);  // mean per stage
   out["substeps"] = w.model.solver.substeps;

@@ -109,13 +109,13 @@ struct DihedralEval {
 // opposite of the wing gradients in proportion to where each wing projects on the edge, so that
 // the gradients sum to zero (translation invariance) and exert no net moment (rotation
 // invariance).
+// rest_cos, rest_sin: of the rest angle (a caller evaluating the same row often keeps them).
 template <class S>
 DihedralEval<S> evaluate_dihedral(const Eigen::Matrix<S, 3, 1>& p0,
                                   const Eigen::Matrix<S, 3, 1>& p1,
                                   const Eigen::Matrix<S, 3, 1>& p2,
-                                  const Eigen::Matrix<S, 3, 1>& p3, S rest_angle) {
-  const DihedralGeometry<S> g =
-      dihedral_geometry(p0, p1, p2, p3, S(std::cos(rest_angle)), S(std::sin(rest_angle)));
+                                  const Eigen::Matrix<S, 3, 1>& p3, S rest_cos, S rest_sin) {
+  const DihedralGeometry<S> g = dihedral_geometry(p0, p1, p2, p3, rest_cos, rest_sin);
   DihedralEval<S> r;
   if (!g.valid) return r;
   r.value = g.value;
@@ -125,6 +125,14 @@ DihedralEval<S> evaluate_dihedral(const Eigen::Matrix<S, 3, 1>& p0,
   r.grad[3] = -g.t0 * r.grad[0] - g.t1 * r.grad[1];
   r.valid = true;
   return r;
+}
+
+template <class S>
+DihedralEval<S> evaluate_dihedral(const Eigen::Matrix<S, 3, 1>& p0,
+                                  const Eigen::Matrix<S, 3, 1>& p1,
+                                  const Eigen::Matrix<S, 3, 1>& p2,
+                                  const Eigen::Matrix<S, 3, 1>& p3, S rest_angle) {
+  return evaluate_dihedral(p0, p1, p2, p3, S(std::cos(rest_angle)), S(std::sin(rest_angle)));
 }
 
 // The signed dihedral angle itself (unit: rad); 0 when degenerate.

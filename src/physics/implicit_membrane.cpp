@@ -108,6 +108,7 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
     }
     if (!(d.stiffness >= 0) || !std::isfinite(d.rest_angle))
       throw std::invalid_argument(name + ": stiffness must not be negative, the rest angle finite");
+    dihedral_rest_.push_back({std::cos(d.rest_angle), std::sin(d.rest_angle)});
   }
 
   // The pattern: a block on every free row's diagonal, between the free ends of every edge and
@@ -256,8 +257,8 @@ Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> b
   for (std::size_t k = 0; k < dihedrals_.size(); ++k) {
     if (dihedral_removed_[k]) continue;
     const MembraneDihedral& d = dihedrals_[k];
-    const DihedralEval<Real> e =
-        evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]], d.rest_angle);
+    const DihedralEval<Real> e = evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]],
+                                                   dihedral_rest_[k][0], dihedral_rest_[k][1]);
     if (!e.valid) continue;  // a degenerate wing: its angle, and so its bending, undefined
     phi += Real(0.5) * d.stiffness * e.value * e.value;
     const Real moment = d.stiffness * e.value;  // k (theta - theta_0) (unit: N m)
@@ -351,8 +352,8 @@ bool ImplicitMembrane::factor_hessian(std::span<const Vec3> x, std::span<const V
   for (std::size_t k = 0; k < dihedrals_.size(); ++k) {
     if (dihedral_removed_[k]) continue;
     const MembraneDihedral& d = dihedrals_[k];
-    const DihedralEval<Real> e =
-        evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]], d.rest_angle);
+    const DihedralEval<Real> e = evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]],
+                                                   dihedral_rest_[k][0], dihedral_rest_[k][1]);
     if (!e.valid) continue;
     for (std::uint32_t p = 0; p < 4; ++p) {
       for (std::uint32_t q = p; q < 4; ++q) {

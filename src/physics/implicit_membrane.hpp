@@ -310,6 +310,7 @@ class ImplicitMembrane {
   std::vector<std::uint8_t> hinge_removed_;
   std::vector<std::array<Block, 16>> hinge_blocks_;  // (a, b) at 4 a + b
   std::vector<MembraneDihedral> dihedrals_;
+  std::vector<std::array<Real, 2>> dihedral_rest_;  // cos, sin of each one's rest angle
   std::vector<std::uint8_t> dihedral_removed_;
   std::vector<std::array<Block, 16>> dihedral_blocks_;  // as hinge_blocks_
   std::vector<BlockCholesky::Pair> pairs_;  // the off-diagonal blocks' rows, as analysed

@@ -139,6 +139,10 @@ struct Reader {
     }
     check_budget();
     check_fascia_solver();
+    if (params.vessel_solver == kImplicitFasciaSolver && lines.count("vessel.coarse"))
+      cross_error({"vessel.coarse", "vessel.solver"},
+                  "the implicit vessel has no rows in the step's rate bands: vessel.coarse changes "
+                  "nothing with it");
     if (!params.heart_series.phase_files.empty()) {
       try {
         load_heart_series(params.heart_series);
@@ -496,10 +500,12 @@ ThoraxSceneParams load_scene_file(const std::string& path) {
 
 namespace {
 
-// The implicit fascia's law is read by it only (check_fascia_solver).
+// The implicit fascia's law is read by it only (check_fascia_solver), the vessel's rate band by
+// the XPBD vessel only.
 bool key_is_read(const ThoraxSceneParams& params, std::string_view path) {
   if (path == "fascia.linear_modulus_pa" || path == "fascia.toe_strain")
     return params.fascia_solver == kImplicitFasciaSolver;
+  if (path == "vessel.coarse") return params.vessel_solver != kImplicitFasciaSolver;
   return true;
 }
 

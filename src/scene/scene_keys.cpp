@@ -26,7 +26,7 @@ constexpr double kDirection = 1e3;
 // heart.placement (scene/heart_placement.hpp).
 constexpr std::array<std::string_view, 2> kPlacementChoices = {kFilePlacement, kAutoPlacement};
 
-// fascia.solver (ThoraxSceneParams::fascia_solver).
+// fascia.solver and vessel.solver (ThoraxSceneParams::fascia_solver, vessel_solver).
 constexpr std::array<std::string_view, 2> kFasciaSolvers = {kXpbdFasciaSolver,
                                                             kImplicitFasciaSolver};
 
@@ -268,6 +268,10 @@ const SceneKey kKeys[] = {
      "visual tube: rings"},
     {"vessel.coarse", BoolRef([](Params& p) { return &p.patch.vessel.object.coarse; }), 0, 0,
      "solved in the coarse band (solver.coarse_stride, coarse_sweeps); false: every substep"},
+    {"vessel.solver", ChoiceRef([](Params& p) { return &p.vessel_solver; }), 0, 0,
+     "\"xpbd\": the vessel's rows in the step's sweeps; \"implicit\": a Newton solve of the "
+     "step with the same rows' energy (docs/physics.md)",
+     kFasciaSolvers},
     {"vessel.total_mass_kg", RealRef([](Params& p) { return &p.patch.vessel.object.total_mass; }),
      1e-6, 10, "M_total of eq. 5"},
     {"vessel.youngs_modulus_pa",

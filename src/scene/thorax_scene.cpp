@@ -119,6 +119,7 @@ ThoraxScene make_thorax_scene(const ThoraxSceneParams& params) {
     use_implicit_fascia(scene, {m.youngs_modulus, params.fascia_linear_modulus,
                                 params.fascia_toe_strain, m.thickness, Real(0)});
   }
+  if (params.vessel_solver == kImplicitFasciaSolver) use_implicit_vessel(scene);
   return scene;
 }
 
@@ -143,10 +144,11 @@ void prepare_thorax_step(ThoraxScene& scene, physics::StepProfile& profile,
 physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& exec) {
   tissue::TissueWorld& w = scene.patch.world;
   Stopwatch fascia_clock;
-  const physics::StepResult fascia = step_scene_fascia(scene);  // nothing without it
+  // Nothing without an implicit fascia or vessel.
+  const physics::StepResult fascia = step_scene_implicit(scene);
   const double fascia_seconds = fascia_clock.lap();
   physics::StepResult r = fascia.ok() ? tissue::step_tissue_dynamics(w, exec) : fascia;
-  release_scene_fascia(scene);
+  release_scene_implicit(scene);
   r.profile[physics::Stage::solve] += fascia_seconds;
   if (!r.ok()) return r;
   Stopwatch clock;

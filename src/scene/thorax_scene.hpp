@@ -16,7 +16,7 @@
 #include "scene/chest_skeleton.hpp"
 #include "scene/console_settings.hpp"
 #include "scene/heart_series.hpp"
-#include "scene/implicit_fascia_scene.hpp"
+#include "scene/implicit_mesh_scene.hpp"
 #include "scene/ports.hpp"
 #include "tissue/heart_field.hpp"
 #include "tissue/surface_contacts.hpp"
@@ -24,6 +24,7 @@
 
 namespace imasim::scene {
 
+// The solvers a mesh of the scene can have (fascia.solver, vessel.solver).
 inline constexpr std::string_view kXpbdFasciaSolver = "xpbd";
 inline constexpr std::string_view kImplicitFasciaSolver = "implicit";
 
@@ -45,11 +46,16 @@ struct ThoraxSceneParams {
   ConsoleSettings console = default_console_settings();  // forces, safety, devices
   // The fascia's solver (docs/physics.md): "xpbd", its rows in the step's sweeps, at the toe's
   // modulus (fascia.youngs_modulus_pa) at every strain; "implicit", Newton on the backward-Euler
-  // step (implicit_fascia_scene.hpp) with the strain-stiffening law: the toe's modulus at rest,
+  // step (implicit_mesh_scene.hpp) with the strain-stiffening law: the toe's modulus at rest,
   // the linear region's past the toe strain.
   std::string fascia_solver = std::string(kXpbdFasciaSolver);
   Real fascia_linear_modulus = Real(2.65e6);  // E past the toe strain (unit: Pa; implicit only)
   Real fascia_toe_strain = Real(0.05);        // where the toe ends (implicit only)
+  // The vessel's solver: "implicit" (the default), Newton on the backward-Euler step of its
+  // rows' energy (implicit_mesh_scene.hpp), which the stiff rows along the vessel need to push
+  // back on a tool as they would converged; "xpbd", its rows in the step's sweeps (the coarse band
+  // unless patch.vessel.object.coarse is false), a fifth as stiff under a hook (docs/physics.md).
+  std::string vessel_solver = std::string(kImplicitFasciaSolver);
   // What reading the scene file said that is not an error, "FILE:LINE: ..." (an old key read
   // under its new name); make_thorax_scene passes them on as setup notes.
   std::vector<std::string> file_notes;
@@ -78,7 +84,10 @@ struct ThoraxScene {
   std::vector<std::string> setup_notes;
   // The fascia solved by the implicit membrane step instead of its XPBD rows
   // (fascia_solver "implicit", or use_implicit_fascia), or XPBD when empty.
-  std::optional<SceneImplicitFascia> implicit_fascia;
+  std::optional<SceneImplicitMesh> implicit_fascia;
+  // The vessel solved by the implicit step of its own rows' energy (vessel_solver "implicit", or
+  // use_implicit_vessel), or XPBD when empty.
+  std::optional<SceneImplicitMesh> implicit_vessel;
 };
 
 // Throws MeshFileError when a heart phase file cannot be loaded, HeartPlacementError when the

@@ -346,11 +346,11 @@ physics::StepResult step_session(SurgicalSession& s, const SessionInput& input,
   // 4. The scene, with the instruments' contacts inside its solve (with the heart's and the
   // wall's): tissue is kept out of the shafts, the closed jaws and the electrode, with friction
   // against each contact point's own motion.
-  // Coagulated fascia is stiffer in the implicit fascia's step too (its XPBD rows, when it has
-  // them, took the stiffer material in apply_cautery).
+  // Coagulated tissue is stiffer in the implicit fascia's and vessel's steps too (its XPBD rows,
+  // when it has them, took the stiffer material in apply_cautery).
   if (s.cautery.coagulated_count > 0) {
-    scene::coagulate_scene_fascia(s.scene, s.cautery.coagulated,
-                                  1 / s.params.cautery.coagulated_compliance_factor);
+    scene::coagulate_scene_implicit(s.scene, s.cautery.coagulated,
+                                    1 / s.params.cautery.coagulated_compliance_factor);
   }
   profile[physics::Stage::cutting] += clock.lap();
   scene::prepare_thorax_step(s.scene, profile, exec);

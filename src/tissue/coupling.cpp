@@ -16,16 +16,8 @@ void apply_coupling(const OffsetCoupling& c, physics::Particles& P, const std::v
     const bool follows = pair_follows(c, j, flags);
     if (which == PairsApplied::following && !follows) continue;
     if (which == PairsApplied::relaxing && (follows || c.decay == 1)) continue;
-    Vec3 target;
-    if (!follows) {  // eq. 9, beta = 0
-      target = ref[i] + c.decay * (P.position[i] - ref[i]);
-    } else {
-      const Vec3 offset = P.position[j] - ref[j];  // O_j
-      const Real len = offset.norm();
-      // eq. 8 (and eq. 9, beta = 1): direction of O_j, length clamped to lambda_max.
-      target =
-          len > c.lambda_max ? Vec3(ref[i] + (c.lambda_max / len) * offset) : Vec3(ref[i] + offset);
-    }
+    const Vec3 target = follows ? follow_target(c, P.position[j], ref[j], ref[i])
+                                : relaxed_target(c, P.position[i], ref[i]);
     if (velocities) P.velocity[i] = inverse_dt * (target - start[i]);
     P.position[i] = target;
   }

@@ -50,6 +50,29 @@ inline bool pair_follows(const OffsetCoupling& c, std::uint32_t j, const Couplin
   return c.beta == Beta::one;
 }
 
+// Eq. 8 (and eq. 9, beta = 1): where destination i is put by source j, the source's offset O_j
+// passed on, its length clamped to lambda_max (unit: m).
+inline Vec3 follow_target(const OffsetCoupling& c, const Vec3& source, const Vec3& source_reference,
+                          const Vec3& reference) {
+  const Vec3 offset = source - source_reference;  // O_j
+  const Real len = offset.norm();
+  return len > c.lambda_max ? Vec3(reference + (c.lambda_max / len) * offset)
+                            : Vec3(reference + offset);
+}
+
+// Eq. 9, beta = 0: the destination's offset shrunk by the decay (unit: m).
+inline Vec3 relaxed_target(const OffsetCoupling& c, const Vec3& position, const Vec3& reference) {
+  return reference + c.decay * (position - reference);
+}
+
+// Eq. 9, beta = 0, for a solver that steps the destination implicitly: the spring to its
+// reference whose backward-Euler step over h decays a lone particle's offset by c.decay, as
+// relaxed_target does after the step (m / h^2 (x1 - x0) + k (x1 - ref) = 0 gives x1 - ref =
+// d (x0 - ref) for k = m / h^2 (1 - d) / d). mass (unit: kg), h (unit: s); (unit: N/m).
+inline Real decay_spring_stiffness(const OffsetCoupling& c, Real mass, Real h) {
+  return mass / (h * h) * (1 - c.decay) / c.decay;
+}
+
 // Whether destination i is left alone by `c` in this step: held, or manipulated and `c` yields.
 inline bool destination_left(const OffsetCoupling& c, std::uint32_t i, const CouplingFlags& f) {
   if (i < f.held.size() && f.held[i]) return true;

@@ -43,6 +43,9 @@ ThoracicPatchParams default_thoracic_patch_params() {
   // vessel's surface and the wall: the patch gives d_max instead.
   p.ima_fat.generation.max_length = Real(0.006);
   p.ima_fat.generation.seed = 11;
+  // The layer of fat holds the vessel both ways and pushes back when it is pressed: without its
+  // columns the vessel gives a hook a tenth of its k_d (docs/haptics.md).
+  p.ima_fat.resists_compression = true;
   p.ima_fat.total_mass = Real(0.002);
 
   p.fascia_fat.name = "fascia_fat";

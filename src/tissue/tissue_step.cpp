@@ -84,9 +84,6 @@ void finish_setup(TissueWorld& world) {
   place_strand_ends(world);
 }
 
-namespace {
-
-// world.manipulated: every particle of a strand of which an instrument holds a particle.
 void mark_manipulated(TissueWorld& world) {
   std::fill(world.manipulated.begin(), world.manipulated.end(), std::uint8_t(0));
   for (const StrandSet& set : world.strands) {
@@ -102,8 +99,6 @@ void mark_manipulated(TissueWorld& world) {
     }
   }
 }
-
-}  // namespace
 
 physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& exec) {
   Stopwatch clock;

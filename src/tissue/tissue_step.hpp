@@ -20,6 +20,10 @@ physics::StepResult step_tissue_dynamics(TissueWorld& world, physics::Executor& 
 void finish_tissue_step(TissueWorld& world, const physics::Executor& exec);
 void finish_tissue_step(TissueWorld& world);  // on the calling thread alone
 
+// world.manipulated: every particle of a strand of which an instrument holds a particle (the
+// step marks it first; a caller acting before the step, on this step's holds, may too).
+void mark_manipulated(TissueWorld& world);
+
 // Recomputes vertex normals of the mesh objects and the fine visual meshes: the heaviest mesh
 // beside the others on a team of two, the same bits on any thread count.
 void update_surfaces(TissueWorld& world, const physics::Executor& exec);
