@@ -133,8 +133,8 @@ TEST(Press, TheFatsColumnsPushTheFasciaBack) {
 
 // The vessel on its fat's columns (tissue/fat_support.hpp) is held across them as well as along
 // them, so it does not roll away from the hook's tip: it pushes back more at each depth to 1.5
-// mm, along the press (measured 0.0262, 0.0344, 0.0429 N). Held along its columns only, it
-// rolled aside at 1.5 mm (0.0023 N there against 0.0091 N at 1 mm).
+// mm, along the press (measured 0.0262, 0.0344, 0.0429 N). Held along its columns only, the XPBD
+// vessel of 40 rings rolled aside at 1.5 mm (0.0023 N there against 0.0091 N at 1 mm).
 TEST(Press, TheVesselOnItsColumnsIsHeldAcrossThemAndPushesBackDeeper) {
   const nlohmann::json held = press("--tissue ima --depth-mm 0.5,1,1.5");
   ASSERT_EQ(held["depths"].size(), 3u);
@@ -190,10 +190,10 @@ TEST(Press, TheVesselsPressIsConvergedInItsMeshAndAsFinelySolvedXpbdPresses) {
 }
 
 // Why the XPBD vessel (`vessel.solver = "xpbd"`) gives a fifth of its k_d: not a press cut short,
-// the solve. Held five times longer (--hold-s 2) the force is the same (measured 0.0064 N both);
-// with the vessel stepped in every substep (`vessel.coarse = false`) instead of the coarse band's
-// eight, the same press pushes back several times as hard: the coarse substep's inertia,
-// m / h^2, softens the wall's stiff rows (docs/physics.md).
+// the solve. Held five times longer (--hold-s 2) the force is the same (measured 0.0064366 N
+// both); with the vessel stepped in every substep (`vessel.coarse = false`) instead of the coarse
+// band's eight, the same press pushes back 3.0 times as hard (0.0196 N): the coarse substep's
+// inertia, m / h^2, softens the wall's stiff rows (docs/physics.md).
 TEST(Press, TheXpbdVesselsShortfallIsItsSolvesNotTheHolds) {
   const std::string coarse = scene_file("vessel_xpbd", "[vessel]\nsolver = \"xpbd\"\n");
   const double base = press_at("1", coarse, 0);

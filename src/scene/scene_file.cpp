@@ -430,7 +430,8 @@ std::string vec3_text(const Vec3& v) {
   return out;
 }
 
-// A TOML basic string: quotes and backslashes escaped, control characters as \uXXXX.
+// A TOML basic string: quotes and backslashes escaped, control characters as \u and four hex
+// digits.
 std::string string_text(const std::string& v) {
   std::string out = "\"";
   for (char c : v) {
