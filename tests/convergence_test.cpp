@@ -140,7 +140,9 @@ TEST(Convergence, TheFasciaSolvedImplicitlyRestsWhereConvergedXpbdRests) {
   tissue::ImplicitFascia fascia = tissue::make_implicit_fascia(
       w, mesh, linear, m.effective_bending_stiffness(), w.model.solver.dt);
   for (int k = 0; k < 300; ++k)
-    ASSERT_TRUE(tissue::step_implicit_fascia(fascia, w, Vec3(0, -9.81, 0), {}, {}, {}).ok);
+    ASSERT_TRUE(
+        tissue::step_implicit_fascia(fascia, w, physics::Executor(1), Vec3(0, -9.81, 0), {}, {}, {})
+            .ok);
   const double implicit = max_displacement(w, w.meshes[mesh]);
   EXPECT_GT(implicit, 0.5e-3);
   EXPECT_NEAR(implicit, xpbd, 0.02 * xpbd);

@@ -31,13 +31,8 @@ Mat3 edge_stiffness(const StiffeningSpring& s, const Vec3& d, bool exact) {
   return stiffness_at(s, l) * along + across * (Mat3::Identity() - along);
 }
 
-// sum_i w_i x_i: the hinge's curvature normal, theta n for a small bend (unit: 1).
-Vec3 hinge_curvature(const MembraneHinge& hinge, std::span<const Vec3> x) {
-  Vec3 sum = Vec3::Zero();
-  for (std::uint32_t p = 0; p < 4; ++p)
-    sum += hinge.w[p] * x[hinge.v[p]];
-  return sum;
-}
+// Free rows a thread takes at a time in the gradient's gather.
+constexpr std::size_t kRowChunk = 256;
 
 }  // namespace
 
@@ -188,6 +183,7 @@ ImplicitMembrane::ImplicitMembrane(std::vector<Real> mass, const std::vector<std
   x0_.resize(n);
   y_.resize(n);
   trial_.resize(n);
+  index_elements();
   gradient_.resize(3 * block_rows_);
   trial_gradient_.resize(3 * block_rows_);
   direction_.resize(3 * block_rows_);
@@ -216,57 +212,26 @@ Real ImplicitMembrane::body_stop_gap(const MembraneBodyStop& r, std::span<const 
 }
 
 Real ImplicitMembrane::evaluate(std::span<const Vec3> x, std::span<const Vec3> bx,
-                                const ImplicitLoads& loads, Real contact_k, Dense& gradient) const {
+                                const ImplicitLoads& loads, Real contact_k, Dense& gradient,
+                                const Executor& exec) {
   const std::span<const Vec3> force = loads.force;
   const Real inverse_h2 = 1 / (h_ * h_);
+  evaluate_elements(x, exec);
+  exec.for_chunks(free_vertices_.size(), kRowChunk, [&](std::size_t first, std::size_t last) {
+    for (auto a = static_cast<std::uint32_t>(first); a < last; ++a) {
+      const std::uint32_t v = free_vertices_[a];
+      Vec3 g = mass_[v] * inverse_h2 * (x[v] - y_[v]);
+      if (!force.empty()) g -= force[v];
+      gradient.segment<3>(3 * a) = gather_elements(a, g);
+    }
+  });
   Real phi = 0;  // (unit: J), relative to x = y for the inertial and the external terms
-  for (std::uint32_t a = 0; a < free_vertices_.size(); ++a) {
-    const std::uint32_t v = free_vertices_[a];
+  for (const std::uint32_t v : free_vertices_) {
     const Vec3 dx = x[v] - y_[v];
     phi += Real(0.5) * mass_[v] * inverse_h2 * dx.squaredNorm();
-    Vec3 g = mass_[v] * inverse_h2 * dx;
-    if (!force.empty()) {
-      phi -= force[v].dot(dx);
-      g -= force[v];
-    }
-    gradient.segment<3>(3 * a) = g;
+    if (!force.empty()) phi -= force[v].dot(dx);
   }
-  for (std::size_t e = 0; e < edges_.size(); ++e) {
-    if (removed_[e]) continue;
-    const MembraneEdge& edge = edges_[e];
-    const Vec3 d = x[edge.i] - x[edge.j];
-    const Real l = d.norm();
-    phi += energy(edge.spring, l);
-    if (!(l > Real(1e-12))) continue;
-    const Vec3 g = tension(edge.spring, l) / l * d;  // dE/dx_i (unit: N)
-    const std::uint32_t a = free_index_[edge.i], b = free_index_[edge.j];
-    if (a != kFixed) gradient.segment<3>(3 * a) += g;
-    if (b != kFixed) gradient.segment<3>(3 * b) -= g;
-  }
-  for (std::size_t k = 0; k < hinges_.size(); ++k) {
-    if (hinge_removed_[k]) continue;
-    const MembraneHinge& hinge = hinges_[k];
-    const Vec3 curvature = hinge_curvature(hinge, x);
-    phi += Real(0.5) * hinge.stiffness * curvature.squaredNorm();
-    const Vec3 kappa = hinge.stiffness * curvature;  // (unit: N)
-    for (std::uint32_t p = 0; p < 4; ++p) {
-      const std::uint32_t a = free_index_[hinge.v[p]];
-      if (a != kFixed) gradient.segment<3>(3 * a) += hinge.w[p] * kappa;
-    }
-  }
-  for (std::size_t k = 0; k < dihedrals_.size(); ++k) {
-    if (dihedral_removed_[k]) continue;
-    const MembraneDihedral& d = dihedrals_[k];
-    const DihedralEval<Real> e = evaluate_dihedral(x[d.v[0]], x[d.v[1]], x[d.v[2]], x[d.v[3]],
-                                                   dihedral_rest_[k][0], dihedral_rest_[k][1]);
-    if (!e.valid) continue;  // a degenerate wing: its angle, and so its bending, undefined
-    phi += Real(0.5) * d.stiffness * e.value * e.value;
-    const Real moment = d.stiffness * e.value;  // k (theta - theta_0) (unit: N m)
-    for (std::uint32_t p = 0; p < 4; ++p) {
-      const std::uint32_t a = free_index_[d.v[p]];
-      if (a != kFixed) gradient.segment<3>(3 * a) += moment * e.grad[p];
-    }
-  }
+  phi = add_elements_energy(phi);
   const auto free_rows = static_cast<std::uint32_t>(free_vertices_.size());
   for (std::uint32_t b = 0; b < body_count_; ++b) {
     phi += Real(0.5) * body_weight_[b] * (bx[b] - body_target_[b]).squaredNorm();
@@ -480,6 +445,13 @@ void ImplicitMembrane::project_crossing(const ImplicitLoads& loads, std::span<co
 ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
                                           const ImplicitLoads& loads,
                                           const ImplicitSolveParams& params) {
+  const Executor serial(1);
+  return step(x, v, loads, params, serial);
+}
+
+ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
+                                          const ImplicitLoads& loads,
+                                          const ImplicitSolveParams& params, const Executor& exec) {
   const Vec3& gravity = loads.gravity;
   const Real contact_k = params.contact_stiffness;
   ImplicitStepReport report;
@@ -565,7 +537,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
       if ((held_[a] != kNone) != bool(factored_held_[a])) return true;
     return false;
   };
-  Real phi = evaluate(x, body_x_, loads, contact_k, gradient_);
+  Real phi = evaluate(x, body_x_, loads, contact_k, gradient_, exec);
   report.residual = largest_imbalance(loads);
   std::copy(x.begin(), x.end(), trial_.begin());
   // Modified Newton: the last factorisation (of an earlier iterate, or of the last step) is kept
@@ -618,7 +590,7 @@ ImplicitStepReport ImplicitMembrane::step(std::span<Vec3> x, std::span<Vec3> v,
         body_trial_[b] = body_x_[b] + alpha * direction_.segment<3>(3 * (free_rows + b));
       if (params.hold_fixed_planes) project_crossing(loads, x);
       // Phi and its gradient at the trial together: the full step is nearly always taken.
-      trial_phi = evaluate(trial_, body_trial_, loads, contact_k, trial_gradient_);
+      trial_phi = evaluate(trial_, body_trial_, loads, contact_k, trial_gradient_, exec);
       accepted = trial_phi <= phi + Real(1e-4) * alpha * slope;
     }
     if (!accepted) {

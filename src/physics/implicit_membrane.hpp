@@ -32,6 +32,7 @@
 
 #include "math/types.hpp"
 #include "physics/block_cholesky.hpp"
+#include "physics/executor.hpp"
 #include "physics/stiffening_spring.hpp"
 
 namespace imasim::physics {
@@ -235,6 +236,10 @@ class ImplicitMembrane {
   // residual says how far the step was solved: above the tolerance when max_iterations ran out.
   ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
                           const ImplicitSolveParams& params);
+  // The same step with the elements' forces evaluated on exec's threads: the same result for any
+  // thread count.
+  ImplicitStepReport step(std::span<Vec3> x, std::span<Vec3> v, const ImplicitLoads& loads,
+                          const ImplicitSolveParams& params, const Executor& exec);
 
   // The normal force each contact of the last step's loads exerted at its end, in their order
   // (unit: N): a held vertex's the plane's reaction (the force its other loads press it with), a
@@ -266,9 +271,15 @@ class ImplicitMembrane {
   };
 
   // Phi at x (bx: the bodies' positions), and its gradient over the free rows and the bodies'
-  // into `gradient`: one pass over the edges for both.
+  // into `gradient`: the elements' terms on exec's threads (evaluate_elements), then gathered.
   Real evaluate(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
-                Real contact_k, Dense& gradient) const;
+                Real contact_k, Dense& gradient, const Executor& exec);
+  // implicit_membrane_elements.cpp: which elements reach each free row (set-up), each element's
+  // terms at x, and a row's elastic gradient gathered from them in element order.
+  void index_elements();
+  void evaluate_elements(std::span<const Vec3> x, const Executor& exec);
+  Vec3 gather_elements(std::uint32_t row, Vec3 g) const;
+  Real add_elements_energy(Real phi) const;  // phi plus theirs, in element order
   // exact: compressed edges' negative tension term kept (may fail: not positive definite).
   bool factor_hessian(std::span<const Vec3> x, std::span<const Vec3> bx, const ImplicitLoads& loads,
                       Real contact_k, bool exact);
@@ -329,6 +340,20 @@ class ImplicitMembrane {
   bool factored_ = false;  // cholesky_ holds a factorisation to keep
   std::vector<Vec3> x0_, y_, trial_;
   Dense gradient_, trial_gradient_, direction_;
+  // The elements' terms at the iterate evaluate() last read, each computed apart (in parallel)
+  // and gathered per free row in element order: the sums a serial scatter would make.
+  std::vector<std::uint8_t> edge_terms_;      // 0: none (cut), 1: energy only (no length), 2: both
+  std::vector<Real> edge_energy_;             // (unit: J)
+  std::vector<Vec3> edge_gradient_;           // dE/dx_i, x_j's the opposite (unit: N)
+  std::vector<Vec3> hinge_curvature_;         // sum_i w_i x_i (unit: 1)
+  std::vector<std::uint8_t> dihedral_terms_;  // 0: cut or degenerate
+  std::vector<Real> dihedral_value_;          // theta - theta_0 (unit: rad)
+  std::vector<std::array<Vec3, 4>> dihedral_grad_;  // d theta / d x_p (unit: 1/m)
+  // Per free row, the elements that reach it: edge 2 e (+1: as its x_j), hinge or dihedral
+  // 4 k + p (its vertex p), ascending; *_start_ has a row's first entry.
+  std::vector<std::uint32_t> row_edges_start_, row_edges_;
+  std::vector<std::uint32_t> row_hinges_start_, row_hinges_;
+  std::vector<std::uint32_t> row_dihedrals_start_, row_dihedrals_;
 };
 
 }  // namespace imasim::physics

@@ -303,7 +303,8 @@ void damp_mesh(tissue::TissueWorld& w, const tissue::MeshObject& mesh) {
   range = kept;
 }
 
-physics::StepResult step_mesh(ThoraxScene& scene, SceneImplicitMesh& f) {
+physics::StepResult step_mesh(ThoraxScene& scene, SceneImplicitMesh& f,
+                              const physics::Executor& exec) {
   physics::StepResult result;
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& mesh = w.meshes[f.mesh];
@@ -330,9 +331,9 @@ physics::StepResult step_mesh(ThoraxScene& scene, SceneImplicitMesh& f) {
     f.supports.push_back(
         {r.particle - first, r.offset * r.normal, r.normal, 1 / r.compliance, r.pushes_only});
   }
-  f.last =
-      tissue::step_implicit_fascia(f.solver, w, w.model.objects[mesh.object].gravity, f.contacts,
-                                   f.bodies, f.solve, f.attachments, f.body_stops, f.supports);
+  f.last = tissue::step_implicit_fascia(f.solver, w, exec, w.model.objects[mesh.object].gravity,
+                                        f.contacts, f.bodies, f.solve, f.attachments, f.body_stops,
+                                        f.supports);
   load_proxies(w, f, first, fixed_planes);
   keep_pressed(f);
   damp_mesh(w, mesh);
@@ -442,7 +443,7 @@ void coagulate_scene_implicit(ThoraxScene& scene, std::span<const std::uint8_t> 
   }
 }
 
-physics::StepResult step_scene_implicit(ThoraxScene& scene) {
+physics::StepResult step_scene_implicit(ThoraxScene& scene, const physics::Executor& exec) {
   physics::StepResult result;
   if (!scene.implicit_fascia && !scene.implicit_vessel) return result;
   tissue::TissueWorld& w = scene.patch.world;
@@ -452,7 +453,7 @@ physics::StepResult step_scene_implicit(ThoraxScene& scene) {
   tissue::mark_manipulated(w);
   for (std::optional<SceneImplicitMesh>* slot : {&scene.implicit_fascia, &scene.implicit_vessel}) {
     if (!*slot) continue;
-    const physics::StepResult r = step_mesh(scene, **slot);
+    const physics::StepResult r = step_mesh(scene, **slot, exec);
     if (!r.ok() && result.ok()) result = r;
   }
   return result;

@@ -127,7 +127,7 @@ void coagulate_scene_implicit(ThoraxScene& scene, std::span<const std::uint8_t> 
 // implicit mesh refitted if it was cut since, its contacts taken out of the XPBD set, stepped,
 // its particles made kinematic. A failed solve comes back as a non-finite status naming the
 // mesh's first particle.
-physics::StepResult step_scene_implicit(ThoraxScene& scene);
+physics::StepResult step_scene_implicit(ThoraxScene& scene, const physics::Executor& exec);
 
 // After the XPBD step: the implicit meshes' masses and velocities back; the instruments' rows
 // and holds on them, and their proxies, given the implicit step's impulses.

@@ -145,7 +145,7 @@ physics::StepResult finish_thorax_step(ThoraxScene& scene, physics::Executor& ex
   tissue::TissueWorld& w = scene.patch.world;
   Stopwatch fascia_clock;
   // Nothing without an implicit fascia or vessel.
-  const physics::StepResult fascia = step_scene_implicit(scene);
+  const physics::StepResult fascia = step_scene_implicit(scene, exec);
   const double fascia_seconds = fascia_clock.lap();
   physics::StepResult r = fascia.ok() ? tissue::step_tissue_dynamics(w, exec) : fascia;
   release_scene_implicit(scene);

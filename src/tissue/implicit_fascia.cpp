@@ -34,7 +34,7 @@ ImplicitFascia make_implicit_fascia(const TissueWorld& world, std::uint32_t mesh
 }
 
 physics::ImplicitStepReport step_implicit_fascia(
-    ImplicitFascia& fascia, TissueWorld& world, const Vec3& gravity,
+    ImplicitFascia& fascia, TissueWorld& world, const physics::Executor& exec, const Vec3& gravity,
     std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
     const physics::ImplicitSolveParams& params,
     std::span<const physics::MembraneAttachment> attachments,
@@ -48,7 +48,7 @@ physics::ImplicitStepReport step_implicit_fascia(
   }
   const physics::ImplicitStepReport report = fascia.membrane->step(
       fascia.x, fascia.v, {gravity, {}, contacts, bodies, attachments, body_stops, supports},
-      params);
+      params, exec);
   for (std::uint32_t k = 0; k < object.particle_count; ++k) {
     const std::uint32_t p = object.first_particle + k;
     if (particles.inverse_mass[p] == 0) continue;

@@ -31,9 +31,10 @@ ImplicitFascia make_implicit_fascia(const TissueWorld& world, std::uint32_t mesh
 
 // One step of the fascia alone: reads its particles' positions and velocities (the fixed ones'
 // positions are where the caller put them for the step's end), solves, and writes the free ones
-// back. Contacts and attachments name mesh-local vertices; body stops, the bodies.
+// back. Contacts and attachments name mesh-local vertices; body stops, the bodies. exec: the
+// threads its elements are evaluated on (the same result on any number).
 physics::ImplicitStepReport step_implicit_fascia(
-    ImplicitFascia& fascia, TissueWorld& world, const Vec3& gravity,
+    ImplicitFascia& fascia, TissueWorld& world, const physics::Executor& exec, const Vec3& gravity,
     std::span<const physics::MembraneContact> contacts, std::span<physics::MembraneBody> bodies,
     const physics::ImplicitSolveParams& params,
     std::span<const physics::MembraneAttachment> attachments = {},
