@@ -1,11 +1,11 @@
 // The forceps pulling grasped tissue, as `imasim run` plays it: the pull a hand feels
 // (eq. 17, forceps_force_normal_n) is converged at the default solver settings. The forceps grasp
 // the fat strands under the fascia's lateral edge, retract them 8 mm and hold
-// (tests/data/grasp_pull.script), towards the beating heart, which stops the jaws. The strands
-// are coarse objects, stepped every 4th substep: one sweep of their rows there reads 10-19 %
-// soft; the default (three sweeps) is compared with 256 x 4 over five half-seconds, and one sweep
-// must fall short, which shows the comparison can fail (docs/physics.md). Release only, label
-// `physics`.
+// (tests/data/grasp_pull.script), towards the beating heart, which stops the jaws at their probe
+// points and at the tissue they hold. The strands are coarse objects, stepped every 4th substep:
+// one sweep of their rows there reads 6-20 % soft; the default (three sweeps) is compared with
+// 256 x 4 over five half-seconds, and one sweep must fail the same comparison in every
+// half-second, which shows it can fail (docs/physics.md). Release only, label `physics`.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -35,8 +35,8 @@ TEST(GraspPull, TheDefaultIsWithinFivePercentOfAFinerSolveAndOneCoarseSweepIsNot
     const double reference = finest.mean(from, from + 0.5, &samples);
     EXPECT_EQ(samples, 30u) << from;  // 60 Hz
     EXPECT_NEAR(standard.mean(from, from + 0.5), reference, 0.05 * reference) << from;
+    EXPECT_LT(one_sweep.mean(from, from + 0.5), 0.95 * reference) << from;
   }
-  EXPECT_LT(one_sweep.mean(2.0, 4.0), 0.9 * finest.mean(2.0, 4.0));
 }
 
 }  // namespace

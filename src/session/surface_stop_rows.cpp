@@ -12,7 +12,8 @@ using surgery::Tissue;
 // from the device (which the coupling may take it back over within the step) (unit: m).
 constexpr Real kStopReach = Real(0.002);
 
-void add_heart_rows(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real reach,
+// margin: kept between the point and the heart (unit: m).
+void add_heart_rows(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real reach, Real margin,
                     std::uint32_t body, std::vector<physics::BodyStopRow>& out) {
   tissue::HeartField& h = s.scene.heart;
   tissue::nearest_per_component(h, x1, reach);
@@ -31,7 +32,7 @@ void add_heart_rows(SurgicalSession& s, const Vec3& x0, const Vec3& x1, Real rea
     r.surface0 =
         q.bary[0] * h.previous[t[0]] + q.bary[1] * h.previous[t[1]] + q.bary[2] * h.previous[t[2]];
     r.normal = n.normal;
-    r.margin = s.params.tool_clearance;
+    r.margin = margin;
     // The surface's eq. 18 mu: the spring carries its push, so the tool sticks while the device's
     // offset lies within the cone |o_t| <= mu |o_n|, whatever the coupling's k.
     r.static_friction = r.kinetic_friction =
@@ -71,13 +72,26 @@ void gather_surface_stop_rows(SurgicalSession& s, const Station& st, std::uint32
   // jaws' opening as it ends: they turn little within a step).
   const Pose& end = st.pose;
   const Pose& start = st.previous_pose;
+  auto at_start = [&](const Vec3& x1) {
+    return Vec3(start.translation +
+                start.rotation * (end.rotation.transpose() * (x1 - end.translation)));
+  };
+  const Real travel = kStopReach + st.proxy.offset.norm();
   for (const Vec3& x1 : probe_points(st, electrode)) {
-    const Vec3 x0 =
-        start.translation + start.rotation * (end.rotation.transpose() * (x1 - end.translation));
-    const Real reach =
-        s.params.tool_clearance + kStopReach + (x1 - x0).norm() + st.proxy.offset.norm();
-    add_heart_rows(s, x0, x1, reach, body, out);
+    const Vec3 x0 = at_start(x1);
+    const Real reach = s.params.tool_clearance + travel + (x1 - x0).norm();
+    add_heart_rows(s, x0, x1, reach, s.params.tool_clearance, body, out);
     add_wall_row(s, x0, x1, reach, body, out);
+  }
+  // The tissue the jaws hold keeps the heart's margin, as its contacts keep it: the jaws lying
+  // across the heart's curve hold it inside the heart while their hinge and tips stay out, and the
+  // hold, projected after the contacts, would win. So each held point stops the tool there.
+  const tissue::HeartField& heart = s.scene.heart;
+  for (const physics::BodyAttachmentRow& held : s.scene.patch.world.state.body_attachments) {
+    if (held.body != body) continue;
+    const Vec3 x0 = at_start(held.target);
+    const Real reach = heart.margin + travel + (held.target - x0).norm();
+    add_heart_rows(s, x0, held.target, reach, heart.margin, body, out);
   }
 }
 
