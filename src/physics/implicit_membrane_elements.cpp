@@ -42,24 +42,17 @@ void ImplicitMembrane::index_elements() {
         }
       },
       row_edges_start_, row_edges_);
-  index_rows(
-      rows,
-      [&](const auto& add) {
-        for (std::uint32_t k = 0; k < hinges_.size(); ++k)
-          for (std::uint32_t p = 0; p < 4; ++p)
-            if (free_index_[hinges_[k].v[p]] != kFixed)
-              add(free_index_[hinges_[k].v[p]], 4 * k + p);
-      },
-      row_hinges_start_, row_hinges_);
-  index_rows(
-      rows,
-      [&](const auto& add) {
-        for (std::uint32_t k = 0; k < dihedrals_.size(); ++k)
-          for (std::uint32_t p = 0; p < 4; ++p)
-            if (free_index_[dihedrals_[k].v[p]] != kFixed)
-              add(free_index_[dihedrals_[k].v[p]], 4 * k + p);
-      },
-      row_dihedrals_start_, row_dihedrals_);
+  // Hinges and dihedrals alike: four vertices each, entry 4 k + p.
+  auto four_vertices = [&](const auto& elements) {
+    return [this, &elements](const auto& add) {
+      for (std::uint32_t k = 0; k < elements.size(); ++k)
+        for (std::uint32_t p = 0; p < 4; ++p)
+          if (free_index_[elements[k].v[p]] != kFixed)
+            add(free_index_[elements[k].v[p]], 4 * k + p);
+    };
+  };
+  index_rows(rows, four_vertices(hinges_), row_hinges_start_, row_hinges_);
+  index_rows(rows, four_vertices(dihedrals_), row_dihedrals_start_, row_dihedrals_);
   edge_terms_.assign(edges_.size(), 0);
   edge_energy_.assign(edges_.size(), 0);
   edge_gradient_.assign(edges_.size(), Vec3::Zero());

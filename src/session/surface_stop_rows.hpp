@@ -2,7 +2,9 @@
 // The heart and the chest wall stop each instrument's proxy inside the solve (issue 13): rows
 // between its body and their tangent planes (physics/body_stop.hpp) at its probe points (the
 // hinge and the tips, surface_stops.hpp), so their push on the tool is part of the step and of
-// the tool's force, like the tissue's. The god-object stop before the step (surface_stops.hpp)
+// the tool's force, like the tissue's. The heart also stops the jaws at each point they hold
+// tissue by, with the heart's own margin (held tissue has no heart rows: tissue::drop_held_rows).
+// The god-object stop before the step (surface_stops.hpp)
 // remains as the guard against a motion that would pass through them between two steps.
 #include <cstdint>
 #include <span>
@@ -15,7 +17,8 @@ namespace imasim::session {
 
 // After the heart has been advanced to the step's end (its `previous` at the step's start):
 // appends the rows of station `st`, whose proxy is body `body`, for every probe point within
-// reach of the heart or the wall over the step. Tag: the surgery::Tissue stopped.
+// reach of the heart or the wall over the step, and for every point its jaws hold (the state's
+// body attachments on `body`) within reach of the heart. Tag: the surgery::Tissue stopped.
 void gather_surface_stop_rows(SurgicalSession& s, const Station& st, std::uint32_t body,
                               std::vector<physics::BodyStopRow>& out);
 
