@@ -5,7 +5,8 @@
 //   BM_MembraneFactor/block:  physics::BlockCholesky, 3 x 3 blocks;
 //   BM_MembraneFactor/eigen_scalar: Eigen's SimplicialLDLT on the same matrix as scalars (AMD
 //   order).
-// Counters: the block rows and the factor's blocks below the diagonal.
+// Counters: the block rows and the factor's blocks below the diagonal. BM_MembraneSolve: one
+// solve with the factor.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/SparseCholesky>
@@ -120,6 +121,21 @@ void BM_MembraneFactor(benchmark::State& bench, bool eigen_scalar) {
   bench.counters["block_rows"] = m.rows;
   bench.counters["factor_blocks"] = double(cholesky.factor_blocks());
 }
+// One solve with the factor (a Newton step's direction once the matrix is factored).
+void BM_MembraneSolve(benchmark::State& bench) {
+  const MembraneMatrix m = fascia_matrix();
+  BlockCholesky cholesky;
+  cholesky.analyse(m.rows, m.pairs);
+  if (!cholesky.factorize(m.diagonal, m.off_diagonal)) bench.SkipWithError("not factored");
+  std::vector<Real> rhs(3 * std::size_t(m.rows));
+  for (auto _ : bench) {
+    for (std::size_t i = 0; i < rhs.size(); ++i)
+      rhs[i] = Real(i % 7) - 3;
+    cholesky.solve(rhs);
+    benchmark::DoNotOptimize(rhs.data());
+  }
+}
+BENCHMARK(BM_MembraneSolve)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MembraneFactor, block, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_MembraneFactor, eigen_scalar, true)->Unit(benchmark::kMillisecond);
 
