@@ -1,7 +1,7 @@
 // The study's report in a real browser (ctest label "browser"): Debian's headless Chromium loads
 // the page with no console message (the page logs only on a broken image), the page's script marks
-// it ready once every image has decoded, and the screenshot shows the heat maps: their colours
-// are counted in its pixels.
+// it ready once every image has loaded with a size (and marks an error when one does not decode),
+// and the screenshot shows the heat maps: their colours are counted in its pixels.
 #include <cairo.h>
 #include <gtest/gtest.h>
 
@@ -46,11 +46,16 @@ int chromium(const std::string& args, const std::string& out, const std::string&
   return std::system(command.c_str());
 }
 
-std::string write_report() {
+// The Table 1 study's report; with `decodable` false its heat map is a PNG signature followed by
+// bytes that do not decode, which passes the report's own check.
+std::string write_report(bool decodable = true) {
   const std::string dir = test_dir();
   std::filesystem::create_directories(dir);
   const std::string png = dir + "heat_map.png";
-  imasim::test::write_heat_map_png(png);
+  if (decodable)
+    imasim::test::write_heat_map_png(png);
+  else
+    std::ofstream(png, std::ios::binary) << "\x89PNG\r\n\x1a\n" << std::string(64, 'x');
   const std::vector<imasim::report::TrialResult> trials = imasim::test::table1_trials(png);
   const imasim::report::StudyInfo info = imasim::test::table1_info();
   const imasim::report::StudySummary summary = imasim::report::summarize_study(info.modes, trials);
@@ -73,6 +78,18 @@ TEST(BrowserReport, LoadsWithoutConsoleMessagesAndMarksItselfReady) {
   EXPECT_NE(dom.find("0.589 ± 0.030"), std::string::npos);
   const std::string log = slurp(test_dir() + "dom.err");
   EXPECT_EQ(log.find(":CONSOLE"), std::string::npos) << log;
+}
+
+// The ready mark can fail: an image that does not decode gives "image-error" and a console error.
+TEST(BrowserReport, AnImageThatDoesNotDecodeMarksThePageWithAnErrorInstead) {
+  const std::string page = write_report(false);
+  const std::string dir = test_dir();
+  ASSERT_EQ(chromium("--dump-dom file://" + page, dir + "dom.html", dir + "dom.err"), 0)
+      << slurp(dir + "dom.err");
+  const std::string dom = slurp(dir + "dom.html");
+  EXPECT_NE(dom.find("data-ready=\"image-error\""), std::string::npos) << dom.substr(0, 400);
+  EXPECT_EQ(dom.find("data-ready=\"yes\""), std::string::npos);
+  EXPECT_NE(slurp(dir + "dom.err").find(":CONSOLE"), std::string::npos);
 }
 
 TEST(BrowserReport, TheScreenshotShowsTheHeatMaps) {

@@ -1,7 +1,7 @@
 #pragma once
 // The study's report as one self-contained HTML page: inline CSS, the images embedded as base64
 // data URIs, no network, no external fonts; a small inline script only marks the page ready
-// (body data-ready="yes") once every image has decoded, for the browser test.
+// (body data-ready="yes") once every image has loaded with a size, for the browser test.
 #include <string>
 #include <vector>
 
