@@ -6,7 +6,7 @@ ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build demo test harvest-check harvest-ci unit-asan fuzz-build fuzz-short fuzz tsan soak format-check layer-check format bench clean
+.PHONY: deps configure build build-app demo test harvest-check harvest-ci unit-asan fuzz-build fuzz-short fuzz tsan soak format-check layer-check format bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -17,9 +17,13 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# Only the program `make demo` runs: a newcomer's first command does not compile the tests.
+build-app: configure
+	cmake --build $(BUILD) -j $(JOBS) --target imasim
+
 # The main job: the scripted operator harvests the IMA with the beating and the static heart (3
 # trials each, in parallel processes), then a summary and out/report.html (docs/scoring.md).
-demo: build
+demo: build-app
 	$(BUILD)/apps/imasim/imasim demo --out out --jobs $(JOBS) --db $(BUILD)/trainees.sqlite
 
 format-check: deps

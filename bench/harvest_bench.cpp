@@ -1,7 +1,7 @@
 // BM_HarvestSecond: one simulated second (200 steps of 5 ms) of the scripted operator's harvest
 // in the built-in scene, beating heart, one thread: the session continues from iteration to
 // iteration through the plan's first seconds (approach, then the incision through the fascia).
-// The counter `realtime_x` is simulated time over wall-clock time (issue 14's target: >= 5).
+// The counter `realtime_x` is simulated time over wall-clock time (the autopilot's target: >= 5).
 // Argument implicit_fascia: 0 the default scene (the XPBD fascia), 1 with `fascia.solver =
 // "implicit"` (the fascia at its strain-stiffening law, the instruments on it as bodies).
 #include <benchmark/benchmark.h>

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Enforces the layer order of docs/ARCHITECTURE.md: a layer includes only itself and the
-# layers listed for it below, never a higher one.
+# layers listed for it below (and base/, the floor under them all), never a higher one. The programs under apps/ are the top layer: they
+# include any layer of src/ (and their own files, by plain name), nothing else.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(
+  [base]="base"
   [math]="math"
   [geometry]="geometry math"
   [haptics]="haptics math"
@@ -20,15 +22,22 @@ declare -A allowed=(
   [console]="console session scene surgery tissue physics geometry math devices haptics metrics"
   [ui]="ui render console session scene surgery tissue physics geometry math devices haptics metrics"
 )
+# base/ is the floor under every layer: the shared basics (the lock-free hand-off between threads).
+for layer in "${!allowed[@]}"; do
+  [[ $layer == base ]] || allowed[$layer]+=" base"
+done
+allowed[apps]="${!allowed[*]}"
 bad=0
 for layer in "${!allowed[@]}"; do
-  [[ -d "src/$layer" ]] || continue
+  dir="src/$layer"
+  [[ $layer == apps ]] && dir=apps
+  [[ -d "$dir" ]] || continue
   while IFS=: read -r file line text; do
     inc=$(sed -E 's/.*#include "([a-z_]+)\/.*/\1/' <<<"$text")
     [[ " ${allowed[$layer]} " == *" $inc "* ]] && continue
     echo "check-layers: $file:$line: layer '$layer' includes '$inc'" >&2
     bad=1
-  done < <(grep -rnE '#include "[a-z_]+/' "src/$layer" || true)
+  done < <(grep -rnE '#include "[a-z_]+/' "$dir" || true)
 done
 ((bad == 0)) && echo "check-layers: layer order respected"
 exit $bad

@@ -8,14 +8,14 @@ packages=(
   clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtime for clang (make fuzz)
   libeigen3-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libopenigtlink-dev  # OpenIGTLink messages for devices (issue 13)
-  libsdl2-dev libspnav-dev  # gamepads and joysticks, 3D mice (issue 13)
-  libboost-math-dev  # the t distribution for the study statistics (issue 14)
-  libcairo2-dev libsqlite3-dev  # heat maps and plots as PNG, trainee records (issue 14)
-  chromium fonts-dejavu-core  # tests only: the study report loaded as a browser does (issue 14)
-  libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL 3.3 through EGL, Mesa's llvmpipe (issue 15)
-  libglfw3-dev libimgui-dev libstb-dev  # the window, its panels, PNG frames (issue 15)
-  xvfb xauth xdotool  # tests only: the window under a virtual display, real key presses (issue 15)
+  libopenigtlink-dev  # OpenIGTLink messages for devices
+  libsdl2-dev libspnav-dev  # gamepads and joysticks, 3D mice
+  libboost-math-dev  # the t distribution for the study statistics
+  libcairo2-dev libsqlite3-dev  # heat maps and plots as PNG, trainee records
+  chromium fonts-dejavu-core  # tests only: the study report loaded as a browser does
+  libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL 3.3 through EGL, Mesa's llvmpipe
+  libglfw3-dev libimgui-dev libstb-dev  # the window, its panels, PNG frames
+  xvfb xauth xdotool  # tests only: the window under a virtual display, real key presses
 )
 
 missing=()

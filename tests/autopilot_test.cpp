@@ -1,4 +1,4 @@
-// The scripted operator (issue 14): its tremor, its playback through the device interface, and
+// The scripted operator: its tremor, its playback through the device interface, and
 // its plan on the default scene (made from the description alone, clear of the heart by a
 // margin that grows with the heart's motion, clear of the vessel while the pedal is down).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The cavity's floor (issue 41, "Freed fascia stays in the cavity"): a piece of fascia cut free
+// The cavity's floor: a piece of fascia cut free
 // beside the heart comes to rest on the floor under the field (the collapsed lung, the
 // pericardium) instead of falling across the cavity to its far wall.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// `imasim device-emulator` exiting in the middle of a cut, as a user's run meets it (issue 42,
-// "Safe on loss"): from the step the loss is seen the hook cuts no more and both instruments hold
+// `imasim device-emulator` exiting in the middle of a cut, as a user's run meets it:
+// from the step the loss is seen the hook cuts no more and both instruments hold
 // still; the run says so on stderr, counts it in its JSON and records it in its input stream,
 // whose replay gives the same state.
 #include <gtest/gtest.h>

@@ -143,7 +143,7 @@ TEST(RunOutputs, ALongClothRunEndsCleanlyOnSigterm) {
   EXPECT_EQ(j["finite"], true);
 }
 
-// Live devices (issue 13): two emulated haptic devices drive the session over OpenIGTLink in real
+// Live devices: two emulated haptic devices drive the session over OpenIGTLink in real
 // time with the 1 kHz loop rendering forces; the run's recorded input stream replays to the
 // same state, bit for bit, on another thread count.
 TEST(RunDevices, AnEmulatedSessionReplaysToTheSameStateHash) {

@@ -1,5 +1,5 @@
-// What `imasim run` refuses from its OpenIGTLink peers is said, not swallowed (issue 42, "Nothing
-// refused in silence"): a tracker sending under a name the scene does not map has every pose
+// What `imasim run` refuses from its OpenIGTLink peers is said, not swallowed: a tracker
+// sending under a name the scene does not map has every pose
 // refused; stderr says so once, the JSON counts it by reason and by device name.
 #include <gtest/gtest.h>
 

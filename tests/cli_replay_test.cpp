@@ -1,4 +1,4 @@
-// `imasim run --replay` knows where its stream came from (issue 42): a stream replayed with
+// `imasim run --replay` knows where its stream came from: a stream replayed with
 // another patient seed or --static gave another state hash with exit 0; a stream cut short
 // replayed its part and an empty one ran 0 steps, both with exit 0; --seconds beyond the stream
 // quietly stopped early. Each is refused now, naming the field or the cause.

@@ -78,8 +78,8 @@ TEST(RunCommand, RunsTheThoraxSceneHeadless) {
   EXPECT_GT(j["particles"].get<int>(), 1000);
   EXPECT_EQ(j["ports"], 4);
   EXPECT_GT(j["ima_motion_max_m"].get<double>(), 1e-4);
-  // Bone does not beat: the chest wall stays put while the heart moves the vessel (issue 41: the
-  // wall took the heart's drive, 6.4 mm over a beat).
+  // Bone does not beat: the chest wall stays put while the heart moves the vessel (the wall
+  // used to take the heart's drive, 6.4 mm over a beat).
   EXPECT_LT(j["chest_wall_motion_max_m"].get<double>(), 1e-4);
   EXPECT_NEAR(j["heart_phase"].get<double>(), 0.7 + 0.5 * 75 / 60.0 - 1, 1e-9);
   EXPECT_EQ(j["status"], "ok");
@@ -260,7 +260,7 @@ TEST(ClothCommand, RejectsBadArgumentsWithAClearMessage) {
   }
 }
 
-// Issue 12's hostile command lines and files: each refused at once with a message naming what
+// The red team's hostile command lines and files: each refused at once with a message naming what
 // is wrong (and, for a scene file, its line and key), never a crash, a hang or a silent run.
 void write_file(const std::string& path, const std::string& text) {
   FILE* f = std::fopen(path.c_str(), "w");

@@ -1,4 +1,4 @@
-// Devices that vanish mid-cut, through the live console's 1 kHz loop (issue 42, "Safe on loss"):
+// Devices that vanish mid-cut, through the live console's 1 kHz loop:
 // the hand's force is zero from the tick the loss is seen, the pedal goes off and the power to 0,
 // the clutch engages so the instrument holds still; a device that comes back (its clock
 // restarted) is followed again. Each kind of device: an OpenIGTLink client that closes, one of

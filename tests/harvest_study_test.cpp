@@ -1,4 +1,4 @@
-// The scripted operator's study (issue 14), as `imasim experiment` runs it: patients harvested
+// The scripted operator's study, as `imasim experiment` runs it: patients harvested
 // with the beating and with the static heart, two trials at a time. The operator must finish the
 // task (its plan completed, at least 90 % of the pedicle's strands divided, the fascia opened)
 // with the IMA uninjured in at least 9 of 10 trials per mode, and the two groups' SAI must differ

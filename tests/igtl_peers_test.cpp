@@ -1,4 +1,4 @@
-// OpenIGTLink as the ecosystem uses it (issue 42, item 2): several peers at once (a tracker for
+// OpenIGTLink as the ecosystem uses it: several peers at once (a tracker for
 // each hand, a pedal box), each with its own clock and order; a peer that vanishes loses the parts
 // it drove and only those; a peer that stalls mid-message or goes silent is dropped and its slot
 // freed; one too many is turned away and counted; imasim as a client calls again, with backoff,

@@ -417,7 +417,7 @@ TEST(InputScript, BadNumbersAreRefused) {
   EXPECT_EQ(s.camera.insertion[0].value, Real(0.05));
 }
 
-// Issue 12: a time in milliseconds ("5000" for 5 s) made a run 5000 s long, and 1e308 made the
+// A time in milliseconds ("5000" for 5 s) made a run 5000 s long, and 1e308 made the
 // run's step count overflow; any time after an hour is refused with a hint.
 TEST(InputScript, TimesAfterAnHourAreRefused) {
   EXPECT_TRUE(fails_with("0 right pedal off\n5000 right pedal cut\n",

@@ -1,12 +1,16 @@
-// The lock-free newest-value exchange between the physics thread and the haptic loop.
+// The lock-free newest-value exchange between threads (base/latest_value.hpp), both ways of using
+// it: by value (the physics thread to the haptic loop), where a reader never sees a torn or older
+// value; and in place (the frame to the drawing thread), where the reader gets the newest
+// published value whole, never one being filled, and knows whether it is new.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <thread>
+#include <vector>
 
-#include "haptics/latest_value.hpp"
+#include "base/latest_value.hpp"
 
-namespace imasim::haptics {
+namespace imasim::base {
 namespace {
 
 TEST(LatestValue, NothingUntilPublishedThenTheNewest) {
@@ -60,5 +64,45 @@ TEST(LatestValue, AReaderOnAnotherThreadNeverSeesATornOrOlderValue) {
   EXPECT_GT(reads, 0u);
 }
 
+TEST(LatestValue, InPlaceReadsTheNewestPublishedValueAndSaysWhetherItIsNew) {
+  LatestValue<std::vector<int>> b;
+  EXPECT_EQ(b.latest(), nullptr);
+  b.back().assign(3, 1);
+  b.publish();
+  b.back().assign(3, 2);
+  b.publish();
+  bool fresh = false;
+  const std::vector<int>* v = b.latest(&fresh);
+  ASSERT_NE(v, nullptr);
+  EXPECT_TRUE(fresh);
+  EXPECT_EQ(*v, std::vector<int>(3, 2));
+  b.back().assign(3, 7);  // being filled: not seen
+  EXPECT_EQ(b.latest(&fresh), v);
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(*v, std::vector<int>(3, 2));
+}
+
+TEST(LatestValue, InPlaceAcrossThreadsEveryReadIsWholeAndInOrder) {
+  LatestValue<std::vector<int>> b;
+  constexpr int kValues = 20000;
+  std::thread producer([&] {
+    for (int k = 1; k <= kValues; ++k) {
+      b.back().assign(64, k);
+      b.publish();
+    }
+  });
+  int last = 0;
+  while (last < kValues) {
+    const std::vector<int>* v = b.latest();
+    if (!v) continue;
+    ASSERT_EQ(v->size(), 64u);
+    for (int x : *v)
+      ASSERT_EQ(x, v->front()) << "a torn frame";
+    ASSERT_GE(v->front(), last);
+    last = v->front();
+  }
+  producer.join();
+}
+
 }  // namespace
-}  // namespace imasim::haptics
+}  // namespace imasim::base

@@ -1,4 +1,4 @@
-// What a lost device leaves behind (console/loss_guard.hpp, issue 42 "Safe on loss"): tick by
+// What a lost device leaves behind (console/loss_guard.hpp): tick by
 // tick, a device that vanishes mid-cut releases its parts at the tick its loss is seen, and a
 // device that comes back drives them again only once it is read afresh.
 #include <gtest/gtest.h>

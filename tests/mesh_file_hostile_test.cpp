@@ -1,4 +1,4 @@
-// Mesh files from the red team's hostile set (issue 12): a PLY header declaring billions of
+// Mesh files from the red team's hostile set: a PLY header declaring billions of
 // entries (std::bad_alloc or a hang in Assimp), an OBJ with a megabyte line or 20-digit numbers,
 // a NaN vertex (reported as "joins 2 separate fans"), and phase meshes scaled to kilometres or
 // below a micron. Each is a MeshFileError naming the file and the cause, found quickly.

@@ -1,4 +1,4 @@
-// Several offscreen contexts in one process (issue 15): EGL hands every caller the same
+// Several offscreen contexts in one process: EGL hands every caller the same
 // surfaceless display, so a context that goes must not end the others, and each draws into its
 // own framebuffer whichever was made last.
 #include <gtest/gtest.h>

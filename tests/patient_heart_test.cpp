@@ -1,4 +1,4 @@
-// A patient's heart as segmentations give it (issue 12): a left ventricle as a structured grid in
+// A patient's heart as segmentations give it: a left ventricle as a structured grid in
 // millimetres and scanner coordinates, its apex pole one position repeated along a whole row, open
 // at the valve plane, two phases. It loads (welded, collapsed triangles dropped, the base
 // capped), is placed under the IMA by heart.placement = "auto", and beats there like the built-in

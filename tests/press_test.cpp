@@ -1,4 +1,4 @@
-// `imasim press` (issue 41): the hook pressed into a tissue of the built-in scene and held at each
+// `imasim press`: the hook pressed into a tissue of the built-in scene and held at each
 // depth, the force the device receives beside eq. 17's k_d d. On the rigid surfaces (the chest
 // wall, the heart held at its static phase) the tool's proxy stops at the surface and the hand
 // feels eq. 17 at the surface's k_d and the device's depth past the plane where it stops the
@@ -58,7 +58,7 @@ TEST(Press, TheHeldHeartStopsTheToolAndTheHandFeelsTheTablesForce) {
 
 // The membrane gives way and pushes back: the tool goes in with the device, and the force grows
 // with every millimetre (measured 0.0040, 0.0063, 0.0093, 0.0142, 0.0224 N at 1-5 mm). It is
-// within 30 % of the table's k_d d (issue 41): the fascia's k_d is the stiffness the hook's tip
+// within 30 % of the table's k_d d: the fascia's k_d is the stiffness the hook's tip
 // meets, 4.3 N/m (measured 94, 73, 72, 83, 104 %; with the old 300 N/m, 1.3-1.5 %).
 TEST(Press, TheFasciaPushesBackMoreTheDeeperItIsPressedAndAsTheTableSays) {
   const nlohmann::json out = press("--tissue fascia --depth-mm 1,2,3,4,5");

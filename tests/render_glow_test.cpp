@@ -1,4 +1,4 @@
-// The cautery's glow (issue 15): a warm point light at the electrode's tip while the pedal is
+// The cautery's glow: a warm point light at the electrode's tip while the pedal is
 // pressed, drawn by its own compiled variant of the lighting (render/shader_variant.hpp). A
 // square of chest wall and a fat sphere face the eye; the glow sits just in front of them.
 #include <gtest/gtest.h>

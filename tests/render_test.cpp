@@ -1,4 +1,4 @@
-// The offscreen renderer (issue 15): the default scene drawn headless through EGL and Mesa's
+// The offscreen renderer: the default scene drawn headless through EGL and Mesa's
 // software rasteriser, checked against where its geometry projects and against a reference.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Scene files from the red team's hostile set (issue 12): each is refused quickly with a
+// Scene files from the red team's hostile set: each is refused quickly with a
 // file:line message, never a crash (deep nesting overflowed toml++'s recursion), a hang (the
 // "did you mean" search over megabyte keys or thousands of unknown keys) or a silent accept.
 #include <gtest/gtest.h>

@@ -144,7 +144,7 @@ TEST(ConsoleInputSource, TheKeyboardDrivesTheSessionThroughTheLiveConsole) {
 }
 
 // The numbers the metrics panel draws carry what the devices refused, by reason and by the
-// sender's name, and the peers (issue 42, "Nothing refused in silence"): a tracker sending under a
+// sender's name, and the peers (nothing is refused in silence): a tracker sending under a
 // name the scene does not map.
 TEST(SimThread, TheNumbersCarryTheDevicesRefusalsByReasonAndName) {
   devices::IgtlDeviceConfig igtl;

@@ -293,7 +293,7 @@ TEST(SurgicalSession, HeatOnTheImaIsRecordedAsInjury) {
   }
 }
 
-// A device lost mid-cut (issue 42): the instruments hold still and the cautery stops at the
+// A device lost mid-cut: the instruments hold still and the cautery stops at the
 // step the input says so, whatever the lost device's last commands were, and both ends are
 // recorded as events; the device's return hands the instruments back.
 TEST(SurgicalSession, AnInstrumentWhoseDeviceIsLostHoldsStillWithNoEnergy) {

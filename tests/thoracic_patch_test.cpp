@@ -181,7 +181,7 @@ TEST(ThoracicPatch, TheVesselFollowsTheFatWhenCoupled) {
   EXPECT_GT(max_displacement(w, w.meshes[patch.ima]), 0.001);
 }
 
-// Eq. 9's beta as the coupling state indicator (issue 41): the fat around the vessel, grasped
+// Eq. 9's beta as the coupling state indicator: the fat around the vessel, grasped
 // beside its middle and retracted 8 mm into the cavity, takes the vessel with it (the vessel
 // follows the held fat's offset, clamped to lambda_max); with beta always 0 it stays where it
 // is. Let go, the vessel relaxes to rest (eq. 9, beta = 0).

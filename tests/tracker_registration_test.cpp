@@ -1,4 +1,4 @@
-// A tracker's frame and its registration (issue 42, item 2): every OpenIGTLink pose is taken into
+// A tracker's frame and its registration: every OpenIGTLink pose is taken into
 // the scene's frame by devices.tracker_translation_m and tracker_rotation_deg; a tool pose under
 // devices.tool_registration = "clutch" moves the tool by how far the tracker moved since its
 // first pose or the last clutch release, 1:1, instead of placing it where the tracker's frame

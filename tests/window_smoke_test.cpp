@@ -1,4 +1,4 @@
-// The window under Xvfb (issue 15): `imasim window` opens, plays the example script for two
+// The window under Xvfb: `imasim window` opens, plays the example script for two
 // seconds of simulated time, saves a screenshot that is the size asked for and not blank, and
 // quits with no OpenGL error; Escape, pressed through the window's key handler, quits it; two
 // emulated haptic devices drive it over OpenIGTLink; with no display or a bad scene it says so

@@ -95,7 +95,7 @@ int run_haptics_bench_command(const HapticsBenchOptions& o) {
   j["floor_missed_deadlines"] = floor_missed;
   j["floor_seconds"] = floor_s;
   if (o.json) {
-    // Exactly the keys of the contract (issue 13); the rest is in the text report.
+    // Exactly the keys of the JSON contract; the rest is in the text report.
     std::cout << j.dump() << '\n';
   } else {
     std::cout << "haptic loop: " << loop["ticks"] << " ticks, " << loop["rate_hz"]

@@ -1,5 +1,5 @@
 #pragma once
-// Long jobs say what they will cost before they start (issue 42): `render --frames 100000` at
+// Long jobs say what they will cost before they start: `render --frames 100000` at
 // 8192x8192 began about two days and terabytes of work without a word, `experiment --trials 1000
 // --seconds 3600` two thousand hour-long trials. The estimate is said on stderr; above an hour or
 // 10 GB the job waits for --yes. The rates are this project's measurements on the CI's kind of

@@ -1,5 +1,5 @@
 #pragma once
-// Where `imasim run` takes each step's input from (issue 13, `--devices`):
+// Where `imasim run` takes each step's input from (`--devices`):
 //   script       the input script, sampled at the step's simulated time (headless, as fast as
 //                the machine steps);
 //   replay       a recorded input stream (console/input_stream.hpp), one line a step;

@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
   CLI::App app{"imasim: robotic IMA harvesting simulator"};
   const imasim::cli::Commands commands = imasim::cli::add_commands(app);
   // No subcommand: the window on the default scene where there is a display, else how to run
-  // headless (issue 15).
+  // headless.
   std::vector<char*> args(argv, argv + argc);
   char window[] = "window";
   if (argc == 1) {

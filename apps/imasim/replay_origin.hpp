@@ -1,5 +1,5 @@
 #pragma once
-// Whether `imasim run --replay STREAM` may play a recorded stream (issue 42): a stream replayed
+// Whether `imasim run --replay STREAM` may play a recorded stream: a stream replayed
 // under another program, scene, patient, heart mode or solver gives another state, and one cut
 // short or empty replays less than was recorded, each with exit 0 until now. Refused naming the
 // field or the cause, unless --replay-anyway (then said on stderr); an empty stream always.

@@ -1,5 +1,5 @@
 #pragma once
-// `imasim run --autopilot` (issue 14): the scripted operator drives both instruments and the
+// `imasim run --autopilot`: the scripted operator drives both instruments and the
 // pedal through the device interface (autopilot/scripted_operator.hpp), as a surgeon's console
 // would; the run reports its plan and how far the harvest got.
 #include <CLI/CLI.hpp>

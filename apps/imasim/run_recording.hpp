@@ -1,5 +1,5 @@
 #pragma once
-// `imasim run --record FILE.csv` (issue 14): the session's trajectory at 60 Hz in FILE.csv
+// `imasim run --record FILE.csv`: the session's trajectory at 60 Hz in FILE.csv
 // (metrics/trajectory_recorder.hpp), a side file FILE.json (what was run, the columns' units and
 // meanings; written at the start so that a killed run still has it, and again at the end with
 // how the run ended and its scores), the events in FILE.events.csv unless --events names another

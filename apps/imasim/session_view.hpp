@@ -1,5 +1,5 @@
 #pragma once
-// A picture of the session as the study's report shows it (issue 15): the scene drawn offscreen
+// A picture of the session as the study's report shows it: the scene drawn offscreen
 // (EGL, no display) from the default orbit, which looks at the fascia, the fat and the heart from
 // the cavity's side, written as a PNG file.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// A study's trainee records (issue 14): every scored trial is appended to the records like any
+// A study's trainee records: every scored trial is appended to the records like any
 // recorded run (`--trainee`, `--db`, `--no-db` passed on to each trial), and the report shows the
 // operator's history over all its sessions in those records (a plot per score).
 #include <CLI/CLI.hpp>

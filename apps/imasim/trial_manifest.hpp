@@ -1,5 +1,5 @@
 #pragma once
-// What makes a finished trial of a study worth keeping (issue 42): a manifest written beside its
+// What makes a finished trial of a study worth keeping: a manifest written beside its
 // files when it ends well, DIR/trials/<mode>-<NN>.done.json, with the trial's command line and a
 // hash of each of its files. A rerun of the study with the same --out keeps a trial whose manifest
 // matches its command line and whose files still hash the same, and runs only the others: a study

@@ -1,5 +1,5 @@
 #pragma once
-// `imasim window` (issue 15): the interactive simulator. The session steps in real time on its
+// `imasim window`: the interactive simulator. The session steps in real time on its
 // own thread; the window draws its latest frame with the panels (instruments, forces, metrics,
 // score card) and takes the keyboard and mouse as the console, with any live device of
 // `imasim run --devices` beside them, or plays an input script. `imasim` with no arguments

@@ -1,6 +1,6 @@
 #pragma once
-// How far a harvest got (issue 14's "finishes the task"), read from the session after the run,
-// by the scorer, not by the operator: the pedicle is free when the fat strands that hold the
+// How far a harvest got (whether the operator finishes the task), read from the session after the
+// run, by the scorer, not by the operator: the pedicle is free when the fat strands that hold the
 // harvested segment of the IMA to the chest wall are divided, the fascia over it is open, and
 // the vessel is uninjured.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The scripted operator's parameters (issue 14). It is a test operator that performs the
+// The scripted operator's parameters. It is a test operator that performs the
 // paper's standard task through the device interface, not a model of surgeons: these knobs vary
 // its trials in stated ways, nothing more.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// The scripted operator as a device (issue 14): it plays a harvest plan through the same
+// The scripted operator as a device: it plays a harvest plan through the same
 // interface as a surgeon's hands (devices/input_device.hpp): a tool pose per hand (the hinge, as
 // a tracker on the instrument reports it), the jaws and the cautery pedal. It never reads or
 // writes tissue state. Poses interpolate between the plan's keys (position linearly, rotation by

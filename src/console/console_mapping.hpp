@@ -1,5 +1,5 @@
 #pragma once
-// The console's input as the session's (issue 13): a device's hands and pedal become the two
+// The console's input as the session's: a device's hands and pedal become the two
 // instruments' inputs. A hand pose goes through the arm (motion scaling, clutch, port); a tool
 // pose (a tracker on the instrument) places the hinge directly. A device's jaw (0 open .. 1
 // closed) is a target angle, (1 - jaw) theta_max, which the jaws reach at their button rate

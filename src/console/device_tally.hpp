@@ -1,6 +1,6 @@
 #pragma once
-// What the live console tells the window about its devices while it runs (issue 42, "Nothing
-// refused in silence"): a plain value the 1 kHz loop publishes without allocating.
+// What the live console tells the window about its devices while it runs (nothing is
+// refused in silence): a plain value the 1 kHz loop publishes without allocating.
 #include <array>
 #include <cstdint>
 

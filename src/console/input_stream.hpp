@@ -1,5 +1,5 @@
 #pragma once
-// A recorded device stream (issue 13, "Determinism"): the session input of every step, as the
+// A recorded device stream: the session input of every step, as the
 // devices gave it, written exactly (hexadecimal floating point) so that replaying the file
 // through step_session reproduces the run's state hash bit for bit. Text, one line a step:
 //   <step> <left> <right> <camera> [lost:left|lost:right|lost:both]

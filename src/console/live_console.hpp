@@ -1,5 +1,5 @@
 #pragma once
-// The console in real time (issue 13): the devices, read at 1 kHz on the haptic loop's thread,
+// The console in real time: the devices, read at 1 kHz on the haptic loop's thread,
 // feed the physics through a lock-free latest value; each physics step publishes its local
 // models back the same way; the loop renders eq. 17-19 against the newest hand pose and sends
 // each hand's force through its safety filter. Neither side ever waits on the other.
@@ -13,13 +13,13 @@
 #include <memory>
 #include <vector>
 
+#include "base/latest_value.hpp"
 #include "console/device_tally.hpp"
 #include "console/loss_guard.hpp"
 #include "devices/input_device.hpp"
 #include "devices/tremor_filter.hpp"
 #include "haptics/force_safety.hpp"
 #include "haptics/haptic_loop.hpp"
-#include "haptics/latest_value.hpp"
 #include "haptics/local_model.hpp"
 #include "session/surgical_session.hpp"
 
@@ -84,8 +84,8 @@ class LiveConsole {
   std::vector<std::unique_ptr<devices::InputDevice>> devices_;
   std::vector<std::array<bool, kParts>> drives_;  // per device: left, right, pedal
   std::chrono::steady_clock::time_point t0_;
-  haptics::LatestValue<devices::ConsoleInput> inputs_;
-  haptics::LatestValue<Models> models_;
+  base::LatestValue<devices::ConsoleInput> inputs_;
+  base::LatestValue<Models> models_;
   devices::ConsoleInput physics_side_input_{};
   // Haptic thread only.
   devices::ConsoleInput raw_{};      // as the devices wrote it
@@ -104,7 +104,7 @@ class LiveConsole {
   LiveConsoleStats stats_;
   std::atomic<std::uint32_t> refusals_seen_{0};
   std::atomic<std::uint64_t> refused_total_{0};
-  haptics::LatestValue<DeviceTally> tallies_;
+  base::LatestValue<DeviceTally> tallies_;
   DeviceTally tally_read_{};  // the reader's
   std::uint64_t ticks_ = 0;
   haptics::HapticLoop loop_;

@@ -1,5 +1,5 @@
 #pragma once
-// What a lost device leaves behind (issue 42, "Safe on loss"): the parts of the console it drove
+// What a lost device leaves behind: the parts of the console it drove
 // (a hand, the pedal) are released at the tick its loss is seen, whatever it last commanded:
 //   hand:  the clutch engages (the instrument holds still while the hand is gone), velocity 0;
 //   pedal: off, the generator's power 0 (no energy reaches the electrode).

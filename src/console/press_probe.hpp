@@ -1,5 +1,5 @@
 #pragma once
-// The press probe behind `imasim press` (issue 41): the cautery hook pressed into one tissue of
+// The press probe behind `imasim press`: the cautery hook pressed into one tissue of
 // a scene, tip first along the tissue's inward normal, held and settled at each depth past the
 // tissue's resting surface, and the force the hand then receives (eq. 17-18 through the local
 // model, as the 1 kHz loop renders it, the device still) beside the table's k_d d (eq. 17 with the

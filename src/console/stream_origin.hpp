@@ -1,5 +1,5 @@
 #pragma once
-// Where a recorded input stream came from (issue 42): the program, the scene (a hash of every key
+// Where a recorded input stream came from: the program, the scene (a hash of every key
 // as `scene print-default` writes them, so any change shows), the patient seed, the heart's mode,
 // the step and the solver, written as "#! key value" lines at the stream's head, and an end line
 // "#! end STEPS" written when the stream is closed. A replay under another origin gives another

@@ -1,7 +1,7 @@
 #pragma once
 // What a device has refused and whom it has served, as a plain value (no allocation, trivially
 // copyable) that the 1 kHz loop can hand to the window: the panel shows it by reason and by
-// device name (issue 42, "Nothing refused in silence"). Reasons are OpenIGTLink's (IgtlRefusal),
+// device name (nothing is refused in silence). Reasons are OpenIGTLink's (IgtlRefusal),
 // the only devices that refuse messages today.
 #include <array>
 #include <cstdint>

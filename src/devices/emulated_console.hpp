@@ -1,5 +1,5 @@
 #pragma once
-// The device side of an OpenIGTLink console, emulated (issue 13; `imasim device-emulator` and
+// The device side of an OpenIGTLink console, emulated (`imasim device-emulator` and
 // haptics-bench): two desktop haptic devices, each hand a mass-spring-damper pulled toward a
 // target path and pushed by the force it receives, stepped at 1 kHz; their poses go out as
 // TRANSFORM messages (hand or tool frame), buttons and pedal as SENSOR messages, and the forces

@@ -1,6 +1,6 @@
 #pragma once
-// Force Dimension devices (omega, sigma, delta, novint Falcon; DHD API) as an InputDevice
-// (issue 13): one device per hand, by its index among those connected. Compiled only with
+// Force Dimension devices (omega, sigma, delta, novint Falcon; DHD API) as an InputDevice:
+// one device per hand, by its index among those connected. Compiled only with
 // IMASIM_FORCE_DIMENSION=ON and the SDK installed (CMake finds dhdc.h and libdhd);
 // docs/haptics.md. The DHD API is called from the 1 kHz loop itself (it is synchronous). Device
 // frame as the vendor's (metres), read as the console hand's frame; a gripper's opening drives

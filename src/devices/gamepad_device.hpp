@@ -1,5 +1,5 @@
 #pragma once
-// Gamepads and joysticks through SDL2 (issue 13): the first game controller SDL finds drives
+// Gamepads and joysticks through SDL2: the first game controller SDL finds drives
 // both hands and the pedal by GamepadMapping; the force on the hands comes back as the pad's
 // rumble (a vibration cue proportional to the larger force, not a force). Works without a
 // display (SDL's game-controller subsystem needs no video). A pad plugged in later is picked up;

@@ -1,5 +1,5 @@
 #pragma once
-// A gamepad as a two-handed console (issue 13), independent of the library that reads it:
+// A gamepad as a two-handed console, independent of the library that reads it:
 //   sticks       each hand's position, as a velocity (full deflection: `speed`), x and y;
 //                with its shoulder button held, the stick's y moves the hand in z instead;
 //   triggers     each hand's jaw (0 open .. 1 closed, pulled = closed);

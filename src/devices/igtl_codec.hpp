@@ -1,5 +1,5 @@
 #pragma once
-// OpenIGTLink messages as imasim reads and writes them (issue 13; the protocol of 3D Slicer,
+// OpenIGTLink messages as imasim reads and writes them (the protocol of 3D Slicer,
 // PLUS and ROS bridges; Debian's libopenigtlink-dev 1.11 packs and unpacks them):
 //   in:  TRANSFORM per hand (device names mapped in the scene file), in millimetres as the
 //        protocol's users send them, converted to metres here, at the edge;

@@ -1,5 +1,5 @@
 #pragma once
-// OpenIGTLink over TCP (issue 13): imasim as the server (trackers and devices connect to it, up to
+// OpenIGTLink over TCP: imasim as the server (trackers and devices connect to it, up to
 // kIgtlMaxPeers at once: a tracker for each hand, a console and a pedal box) or as a client (it
 // calls a tracker's server, and calls again with backoff when the connection is lost). Messages
 // are read as they arrive, without blocking (the 1 kHz loop polls), checked and applied by

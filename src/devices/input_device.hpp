@@ -1,5 +1,5 @@
 #pragma once
-// One interface for every input device (issue 13): desktop haptic devices and trackers over
+// One interface for every input device: desktop haptic devices and trackers over
 // OpenIGTLink, gamepads, 3D mice, scripted playback. A device drives part of the console (one
 // hand, both, the pedals): poll() writes what it owns into the ConsoleInput and leaves the rest.
 // All calls come from one thread (the 1 kHz loop's) and never block.

@@ -5,7 +5,7 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "haptics/latest_value.hpp"
+#include "base/latest_value.hpp"
 
 namespace imasim::devices {
 
@@ -33,10 +33,10 @@ struct OpenHapticsDevice::Servo {
   HHD device = HD_INVALID_HANDLE;
   HDSchedulerHandle callback = HD_INVALID_HANDLE;
   Real max_force = Real(3.3);
-  haptics::LatestValue<StylusState> state;  // servo -> loop
-  haptics::LatestValue<Vec3> force;         // loop -> servo
-  Vec3 servo_force = Vec3::Zero();          // servo thread only
-  StylusState loop_state;                   // loop thread only
+  base::LatestValue<StylusState> state;  // servo -> loop
+  base::LatestValue<Vec3> force;         // loop -> servo
+  Vec3 servo_force = Vec3::Zero();       // servo thread only
+  StylusState loop_state;                // loop thread only
   std::atomic<bool> failed{false};
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// OpenHaptics (3D Systems Touch, Touch X; HD API) as an InputDevice (issue 13): one device per
+// OpenHaptics (3D Systems Touch, Touch X; HD API) as an InputDevice: one device per
 // hand, named as in the vendor's configuration ("Default Device", or the names its setup tool
 // gave two devices). Compiled only with IMASIM_OPENHAPTICS=ON and the SDK installed (CMake finds
 // HD/hd.h and libHD); docs/haptics.md. The HD API runs its own 1 kHz servo thread: a callback

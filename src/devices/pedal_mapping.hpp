@@ -1,5 +1,5 @@
 #pragma once
-// Foot pedals as joystick buttons (issue 13): a USB foot switch reads as a joystick whose
+// Foot pedals as joystick buttons: a USB foot switch reads as a joystick whose
 // buttons are the pedals. Which button is which is the scene file's (devices.pedal_*): the
 // cautery's cut and coagulation pedals (energy while held; cut wins when both are held) and a
 // clutch pedal that clutches both hands while held, as on a robotic console.

@@ -1,5 +1,5 @@
 #pragma once
-// 3D mice (SpaceMouse, SpaceNavigator) through libspnav and the spacenavd daemon (issue 13): one
+// 3D mice (SpaceMouse, SpaceNavigator) through libspnav and the spacenavd daemon: one
 // hand (the right by default) moved by the cap's push as a velocity in six degrees of freedom,
 // its two buttons for the jaw (held = closed) and the clutch (held). The daemon reports
 // displacements of the cap, about +-350 at full push. Without the daemon the device reads as not

@@ -1,5 +1,5 @@
 #pragma once
-// Tremor filtering of a hand's position (issue 13), as robotic consoles do: a second-order
+// Tremor filtering of a hand's position, as robotic consoles do: a second-order
 // Butterworth low-pass per axis at `cutoff_hz` (6 Hz by default: physiological tremor lies at
 // 8-12 Hz, deliberate surgical motion below 2 Hz), sampled at the loop's rate, designed by the
 // bilinear transform with the cutoff pre-warped. Unit gain at rest, so a held hand stays put.

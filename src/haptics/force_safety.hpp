@@ -1,5 +1,5 @@
 #pragma once
-// What stands between the force model and a device's motors (issue 13, "Safety"): every force
+// What stands between the force model and a device's motors: every force
 // commanded passes through one ForceSafety per device, in this order:
 //   1. a non-finite request becomes zero (and is counted);
 //   2. the magnitude is clamped to the device's maximum force;

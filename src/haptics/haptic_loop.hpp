@@ -1,5 +1,5 @@
 #pragma once
-// The 1 kHz haptic loop on its own thread (SPEC S5; issue 13): a steady clock and a deadline
+// The 1 kHz haptic loop on its own thread (SPEC S5): a steady clock and a deadline
 // schedule, sleeping until shortly before each deadline and spinning the last part (a sleep
 // alone wakes up to tens of microseconds late). Each tick calls the caller's function (read the
 // device, evaluate the local model, command the force) and records the period between tick

@@ -1,5 +1,5 @@
 #pragma once
-// The local model the 1 kHz loop renders between two 5 ms physics steps (SPEC S5, issue 13):
+// The local model the 1 kHz loop renders between two 5 ms physics steps (SPEC S5):
 // per instrument, the contacts of its proxy (point on the surface, normal, tissue kind, the
 // surface's velocity) and the cautery's state, published by a physics step at `time_s`. The
 // loop evaluates eq. 17-19 against the newest device pose, each contact's plane carried along

@@ -1,5 +1,5 @@
 #pragma once
-// Proficiency thresholds from a file (issue 14): a JSON object of metric name to threshold,
+// Proficiency thresholds from a file: a JSON object of metric name to threshold,
 //   {"time_to_complete_s": 300, "heart_contacts": 1}
 // replacing the defaults of metrics/trainee_metrics.hpp for those metrics. Errors name the file
 // and the line: a file that is not JSON, not an object, a name that is no metric (with the

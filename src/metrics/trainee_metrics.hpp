@@ -1,5 +1,5 @@
 #pragma once
-// Trainee metrics of a recorded session (issue 14), as robotic-surgery simulators report them,
+// Trainee metrics of a recorded session, as robotic-surgery simulators report them,
 // each against a proficiency threshold with pass or fail. Computed from the 60 Hz recording
 // (metrics/trajectory_recorder.hpp), the event stream and the session's totals. Between two
 // rows the state of the earlier one holds; speeds are the tip's displacement between rows over

@@ -1,5 +1,5 @@
 #pragma once
-// Trainee records (issue 14): every scored session appended to one SQLite database, so that an
+// Trainee records: every scored session appended to one SQLite database, so that an
 // educator sees a trainee's progress over sessions (`imasim history`). One row a session
 // (trainee, UTC date-time, scene, heart mode, patient seed, operator, SAI per instrument) and
 // one a metric, in the order trainee_metrics gives them. Several processes of a study may append

@@ -1,5 +1,5 @@
 #pragma once
-// The session recorder (SPEC S6; issue 14): per instrument the tip's position and orientation,
+// The session recorder (SPEC S6): per instrument the tip's position and orientation,
 // the jaw angle, the device (hand) position and clutch, the force per channel (eq. 17-19:
 // normal, tangential, thermal) and the tissue in contact; the pedal and its power; sampled at
 // 60 Hz (the paper's rate) and written as the run goes: whole lines, flushed at least once a

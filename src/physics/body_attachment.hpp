@@ -1,5 +1,5 @@
 #pragma once
-// A particle held by a proxy body (the forceps' grasp; issue 13): the attachment of
+// A particle held by a proxy body (the forceps' grasp): the attachment of
 // attachment_constraint.hpp, C = p - t, with the target t riding on the body, carried by the
 // offset the body moves by within the step. Particle and body share each correction by their
 // inverse masses (the body weighs c h over a substep h, proxy_body.hpp), so held tissue pulls the

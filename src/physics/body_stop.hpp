@@ -1,5 +1,5 @@
 #pragma once
-// A proxy body stopped by a kinematic surface (the heart's wall, the chest wall; issue 13): a
+// A proxy body stopped by a kinematic surface (the heart's wall, the chest wall): a
 // point of the instrument (its hinge, a jaw's tip, the electrode) kept on the outer side of the
 // surface's tangent plane plus a margin, inside the solve, the way a particle is kept out of it
 // (contact.hpp), but with the body as the moving side. The surface is infinitely heavy, so the

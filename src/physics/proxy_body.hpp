@@ -1,5 +1,5 @@
 #pragma once
-// An instrument's proxy as a body inside the solve (virtual coupling, SPEC S5 reading; issue 13).
+// An instrument's proxy as a body inside the solve (virtual coupling, SPEC S5 reading).
 // The instrument follows a kinematic path, the device pose the hand asks for, moved by an offset
 // o: the body's one unknown. A contact row that names the body (ContactRow::body) is a two-body
 // constraint: its particle and the proxy share each correction by their inverse masses, so

@@ -1,5 +1,5 @@
 #pragma once
-// The console's settings as a scene file gives them (issue 13): the force model's parameters
+// The console's settings as a scene file gives them: the force model's parameters
 // per tissue (eq. 17-19, docs/haptics.md for their reasoning), the safety limits, the hands'
 // motion scaling and tremor filter, and the OpenIGTLink link (address, port, device names).
 // Plain numbers and names here; the console layer turns them into the haptics' and devices'

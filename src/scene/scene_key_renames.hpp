@@ -1,5 +1,5 @@
 #pragma once
-// Keys of earlier scene files (issue 42): a key that was renamed is read under its new name with a
+// Keys of earlier scene files: a key that was renamed is read under its new name with a
 // note naming it, its value converted where the unit changed; a key whose quantity no longer
 // exists (the scene is laid out from the anatomy now, materials are moduli, not compliances) is
 // refused naming what replaced it. Scene files that loaded before keep loading, or say why not.

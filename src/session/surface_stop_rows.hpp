@@ -1,5 +1,5 @@
 #pragma once
-// The heart and the chest wall stop each instrument's proxy inside the solve (issue 13): rows
+// The heart and the chest wall stop each instrument's proxy inside the solve: rows
 // between its body and their tangent planes (physics/body_stop.hpp) at its probe points (the
 // hinge and the tips, surface_stops.hpp), so their push on the tool is part of the step and of
 // the tool's force, like the tissue's. The heart also stops the jaws at each point they hold

@@ -55,7 +55,7 @@ std::uint32_t update_grasp(tissue::TissueWorld& world, const GraspParams& params
                            const InstrumentParams& instrument, const InstrumentState& state,
                            Grasper& grasper);
 
-// The pull of the held tissue on the jaws after a step (the tool proxy feels it; issue 13):
+// The pull of the held tissue on the jaws after a step (the tool proxy feels it):
 // each attachment is a spring of the grasp's compliance alpha, so at the end of a converged
 // solve it carries f = (target - x) / alpha on its particle and the opposite on the jaws:
 //   F_jaws = sum_i (x_i - target_i) / alpha   (unit: N).

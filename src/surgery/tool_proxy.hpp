@@ -1,5 +1,5 @@
 #pragma once
-// The tool proxy (virtual coupling, SPEC S5 reading; issues 13 and 41): the instrument in the
+// The tool proxy (virtual coupling, SPEC S5 reading): the instrument in the
 // physics is not where the hand puts it but a proxy coupled to that "device pose" by a stiff
 // spring and damper, one coupling for every tissue, and stopped by what it touches. The heart and
 // the chest wall stop it inside the solve as well, through rows between the body and their

@@ -6,7 +6,7 @@
 //       O_dst = O_src / |O_src| * min(|O_src|, lambda_max)
 //   with beta = 0 the destination instead relaxes:  O_dst <- decay * O_dst  (eq. 9, 0.8), after
 //   the step (decay 1: left to its own physics).
-// beta is the coupling state indicator of eq. 9 (SPEC S2 reading, issue 41): always 0, always 1,
+// beta is the coupling state indicator of eq. 9 (SPEC S2 reading): always 0, always 1,
 // or per pair 1 while the source's strand is manipulated (an instrument holds a particle of it),
 // so that retracting the fat moves the vessel and the fascia it is bound to, and they relax to
 // rest once it is let go. Manipulated fat is driven by the tool: couplings that `yield` leave

@@ -1,5 +1,5 @@
 #pragma once
-// The fat holds and pushes back (issue 41): a strand stands for the connective tissue over its
+// The fat holds and pushes back: a strand stands for the connective tissue over its
 // share A_s of its source face, and that tissue resists being compressed as it resists being
 // stretched, E A_s / L over its length L. A strand's chain of distance rows cannot carry this to
 // the surfaces it binds (its ends ride on them, kinematic) nor resist compression (it buckles

@@ -148,7 +148,7 @@ Real heart_signed_distance(HeartField& heart, const Vec3& p, Real search);
 // phase of the last advance_heart: the time derivative of the playback (heart_vertex_rate times
 // the cycles per second) mixed with the nearest point's barycentric weights (unit: m/s). Zero
 // when no surface lies within `search` or the heart is still. The local model of the haptic loop
-// carries the heart's contact plane with it between physics steps (issue 13).
+// carries the heart's contact plane with it between physics steps.
 Vec3 heart_surface_velocity(HeartField& heart, const Vec3& p, Real search);
 
 }  // namespace imasim::tissue

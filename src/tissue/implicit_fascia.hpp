@@ -3,7 +3,7 @@
 // (physics/implicit_membrane.hpp) instead of its XPBD rows: the mesh at its rest positions, the
 // masses its particles have (eq. 5), its fixed particles fixed, its edges the strain-stiffening
 // springs of `material` (the toe's modulus, the linear region's past the toe strain), its
-// interior edges hinges of the bending stiffness D. The first piece of issue 41's fascia at its
+// interior edges hinges of the bending stiffness D. The first piece of a fascia at its
 // real stiffness (scene/implicit_mesh_scene.hpp steps it in the thorax scene).
 #include <cstdint>
 #include <optional>

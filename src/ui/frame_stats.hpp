@@ -1,6 +1,6 @@
 #pragma once
 // Frame-rate figures from the times between consecutive frames (unit: s): the median frame rate
-// and the 99th percentile of the frame time (issue 15's benchmark).
+// and the 99th percentile of the frame time (the window's benchmark).
 #include <vector>
 
 namespace imasim::ui {

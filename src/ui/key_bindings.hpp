@@ -1,5 +1,5 @@
 #pragma once
-// Which key does what in the window (issue 15): the console's controls (hands, jaws, clutches,
+// Which key does what in the window: the console's controls (hands, jaws, clutches,
 // pedal, power) and the window's commands, in one table that the key handler, the keyboard
 // device's description and the help panel all read. Keys are GLFW key codes (US layout
 // positions, whatever the keyboard's letters).

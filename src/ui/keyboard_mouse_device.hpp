@@ -1,5 +1,5 @@
 #pragma once
-// The keyboard and mouse as a two-handed console (issue 15), on the gamepad's model
+// The keyboard and mouse as a two-handed console, on the gamepad's model
 // (devices/gamepad_mapping.hpp): a held movement key moves its hand at `speed` along one axis of
 // the console's hand frame (the arm's 3:1 scaling and clutch do the rest), a mouse drag moves a
 // hand by its pixels; jaw keys close or open a hand's jaws at `jaw_rate` while held; the pedal

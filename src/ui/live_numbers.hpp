@@ -1,7 +1,7 @@
 #pragma once
 // What the physics thread tells the window about the session, about 60 times a second: plain
 // values with no pointers and nothing to allocate, exchanged whole through a lock-free latest
-// value (haptics::LatestValue), so the panels read a consistent set from one step.
+// value (base::LatestValue), so the panels read a consistent set from one step.
 #include <array>
 #include <cstdint>
 

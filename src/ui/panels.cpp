@@ -107,7 +107,7 @@ void forces_panel(const LiveNumbers& n) {
 }
 
 // The live devices: their peers, what they refused by reason and by sender's name, and how long
-// each part was held for a lost device (issue 42: nothing refused in silence).
+// each part was held for a lost device (nothing is refused in silence).
 static void devices_lines(const console::DeviceTally& t) {
   const auto u = [](std::uint64_t v) { return static_cast<unsigned long long>(v); };
   const devices::DeviceCounts& c = t.counts;

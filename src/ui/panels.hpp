@@ -1,5 +1,5 @@
 #pragma once
-// The window's Dear ImGui panels (issue 15): the session (time, heart, pause, restart, record,
+// The window's Dear ImGui panels: the session (time, heart, pause, restart, record,
 // end, camera and stereo), the instruments (jaws, clutch, contact, pedal, power), the force
 // readout per channel with its history, the live metrics, the help and the score card. They
 // only read what the physics thread published and say which commands were clicked; the window

@@ -1,5 +1,5 @@
 #pragma once
-// The session's scores while it runs and its score card at the end (SPEC S6, issue 14's
+// The session's scores while it runs and its score card at the end (SPEC S6 and the trainee
 // metrics): the 60 Hz rows kept in memory, the Spatial Asymmetry Index of each instrument so
 // far (eq. 20), collisions between the instruments, and at the end the trainee metrics with
 // their thresholds. Optionally the rows also go to a CSV file as they are taken (record).

@@ -1,5 +1,5 @@
 #pragma once
-// The physics thread of the window (issue 15): owns the surgical session and steps it in real
+// The physics thread of the window: owns the surgical session and steps it in real
 // time at its dt (5 ms) with the input source's input; after every third step (about 60 Hz)
 // fills a RenderFrame and the live numbers and publishes them lock-free, so drawing never
 // blocks physics. The window's commands (pause, restart, heart mode, record, end) come the
@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "haptics/latest_value.hpp"
+#include "base/latest_value.hpp"
 #include "physics/executor.hpp"
 #include "render/render_frame.hpp"
 #include "scene/thorax_scene.hpp"
@@ -20,7 +20,6 @@
 #include "ui/input_source.hpp"
 #include "ui/live_numbers.hpp"
 #include "ui/session_score.hpp"
-#include "ui/triple_buffer.hpp"
 
 namespace imasim::ui {
 
@@ -96,8 +95,8 @@ class SimThread {
   double rate_wall_s_ = 0, rate_sim_s_ = 0;  // where the realtime factor was measured last
   int recordings_ = 0;
 
-  TripleBuffer<render::RenderFrame> frames_;
-  haptics::LatestValue<LiveNumbers> numbers_;
+  base::LatestValue<render::RenderFrame> frames_;
+  base::LatestValue<LiveNumbers> numbers_;
   mutable std::mutex card_mutex_;  // the card is made once a session; never on the step path
   std::optional<ScoreCard> card_;
   std::atomic<std::uint64_t> card_generation_{0};

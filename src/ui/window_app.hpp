@@ -1,5 +1,5 @@
 #pragma once
-// The interactive window (issue 15): GLFW with an OpenGL 3.3 core context, the 3D view drawn by
+// The interactive window: GLFW with an OpenGL 3.3 core context, the 3D view drawn by
 // render::Renderer from the physics thread's latest frame (endoscope or orbit camera, mono or
 // stereo), the Dear ImGui panels over it, and the keyboard and mouse as the console. Checks
 // glGetError after every frame.
