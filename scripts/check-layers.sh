@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Enforces the layer order of docs/ARCHITECTURE.md: a layer includes only itself and the
-# layers listed for it below (and base/, the floor under them all), never a higher one. The programs under apps/ are the top layer: they
-# include any layer of src/ (and their own files, by plain name), nothing else.
+# layers listed for it below (and base/, the floor under them all), never a higher one. The
+# programs under apps/ are the top layer: they include any layer of src/ (and their own files,
+# by plain name), nothing else.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(
