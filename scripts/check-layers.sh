@@ -21,7 +21,8 @@ declare -A allowed=(
   [report]="report metrics surgery tissue physics geometry math"
   [render]="render session scene surgery tissue physics geometry math"
   [console]="console session scene surgery tissue physics geometry math devices haptics metrics"
-  [ui]="ui render console session scene surgery tissue physics geometry math devices haptics metrics"
+  [runner]="runner console autopilot session scene surgery tissue physics geometry math devices haptics metrics"
+  [ui]="ui render runner autopilot console session scene surgery tissue physics geometry math devices haptics metrics"
 )
 # base/ is the floor under every layer: the shared basics (the lock-free hand-off between threads).
 for layer in "${!allowed[@]}"; do

@@ -10,8 +10,9 @@
 
 #include "devices/igtl_device.hpp"
 #include "loopback_client.hpp"
+#include "runner/input_source.hpp"
 #include "scene/scene_file.hpp"
-#include "ui/input_source.hpp"
+#include "ui/keyboard_mouse_device.hpp"
 #include "ui/sim_thread.hpp"
 
 namespace imasim::ui {
@@ -38,7 +39,7 @@ TEST(SimThread, StepsPublishesAndEndsWithAScoreCard) {
   SimConfig config;
   config.realtime = false;
   config.end_s = 0.3;
-  SimThread sim(config, std::make_unique<ScriptInput>(example_script()));
+  SimThread sim(config, std::make_unique<runner::ScriptInput>(example_script()));
   EXPECT_FALSE(sim.finished());
   sim.start();
   ASSERT_TRUE(wait_for([&] { return sim.finished(); }));
@@ -71,7 +72,7 @@ TEST(SimThread, PausesRestartsWithTheOtherHeartAndRecords) {
   SimConfig config;
   config.realtime = false;
   config.record_path = dir + "take.csv";
-  SimThread sim(config, std::make_unique<ScriptInput>(example_script()));
+  SimThread sim(config, std::make_unique<runner::ScriptInput>(example_script()));
   sim.set_recording(true);
   sim.start();
   LiveNumbers n;
@@ -107,7 +108,8 @@ TEST(SimThread, PausesRestartsWithTheOtherHeartAndRecords) {
 TEST(SimThread, ABadSceneIsRefusedBeforeAnyThreadStarts) {
   SimConfig config;
   config.scene.ports.clear();  // no camera, no instrument ports
-  EXPECT_THROW(SimThread(config, std::make_unique<ScriptInput>(example_script())), std::exception);
+  EXPECT_THROW(SimThread(config, std::make_unique<runner::ScriptInput>(example_script())),
+               std::exception);
 }
 
 TEST(ConsoleInputSource, TheKeyboardDrivesTheSessionThroughTheLiveConsole) {
@@ -119,7 +121,7 @@ TEST(ConsoleInputSource, TheKeyboardDrivesTheSessionThroughTheLiveConsole) {
   list.push_back(std::move(owned));
   console::LiveConsoleParams params;
   params.loop.realtime_priority = 0;
-  ConsoleInputSource source(std::move(list), keyboard, params);
+  runner::ConsoleInputSource source(std::move(list), params, [keyboard] { keyboard->reset(); });
   keyboard->set_held(Control::right_x_plus, true);
   keyboard->set_held(Control::pedal_coag, true);
   session::SessionInput in;
@@ -158,7 +160,8 @@ TEST(SimThread, TheNumbersCarryTheDevicesRefusalsByReasonAndName) {
   SimConfig config;
   config.realtime = false;
   config.end_s = 60;
-  SimThread sim(config, std::make_unique<ConsoleInputSource>(std::move(list), nullptr, params));
+  SimThread sim(config,
+                std::make_unique<runner::ConsoleInputSource>(std::move(list), params, nullptr));
   sim.start();
   const test::LoopbackClient tracker(port);
   tracker.send(devices::encode_pose("Tracker", Pose{}, 1.0));

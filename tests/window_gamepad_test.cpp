@@ -9,8 +9,9 @@
 #include <thread>
 
 #include "devices/gamepad_device.hpp"
+#include "runner/input_source.hpp"
 #include "scene/thorax_scene.hpp"
-#include "ui/input_source.hpp"
+#include "ui/keyboard_mouse_device.hpp"
 #include "virtual_joystick.hpp"
 
 namespace imasim::ui {
@@ -35,7 +36,7 @@ TEST(WindowGamepad, TheControllerDrivesBothHandsAndThePedalThroughTheLiveConsole
   list.push_back(std::move(gamepad));
   console::LiveConsoleParams params;
   params.loop.realtime_priority = 0;
-  ConsoleInputSource source(std::move(list), keyboard, params);
+  runner::ConsoleInputSource source(std::move(list), params, [keyboard] { keyboard->reset(); });
 
   // The left stick right, the cut button (A), and the right-hand key held on the keyboard.
   pad.set_axis(SDL_CONTROLLER_AXIS_LEFTX, 32767);

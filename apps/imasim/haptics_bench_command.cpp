@@ -11,6 +11,7 @@
 #include "interrupt.hpp"
 #include "live_inputs.hpp"
 #include "physics/executor.hpp"
+#include "runner/session_runner.hpp"
 #include "scene/thorax_scene.hpp"
 #include "session/surgical_session.hpp"
 
@@ -72,11 +73,8 @@ int run_haptics_bench_command(const HapticsBenchOptions& o) {
   const haptics::HapticLoopStats floor_before = bare_sleeper(floor_part_s);
   const double dt = double(s.scene.patch.world.model.solver.dt);
   const auto steps = std::uint64_t(o.seconds / dt);
-  std::uint64_t done = 0;
-  for (; done < steps && interrupt_signal() == 0; ++done) {
-    if (!session::step_session(s, live->next(s), exec).ok()) break;
-    live->after_step(s, done + 1, dt);
-  }
+  runner::SessionRunner run(s, *live, exec, runner::Pacing::real_time);
+  const std::uint64_t done = run.run(steps, [] { return interrupt_signal() != 0; }).steps;
   const nlohmann::ordered_json d = live->finish();
   const haptics::HapticLoopStats floor_after = bare_sleeper(floor_part_s);
   const nlohmann::ordered_json& loop = d["haptic_loop"];

@@ -138,12 +138,10 @@ LiveInputs::~LiveInputs() {
 }
 
 session::SessionInput LiveInputs::next(const session::SurgicalSession& s) {
-  if (start_s_ < 0) start_s_ = console_->now_s();
   return console::to_session_input(console_->latest_input(), s);
 }
 
-void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t steps_done,
-                            double dt) {
+void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t steps_done) {
   console_->publish(s, steps_done);
   // A refusal is said once per reason as it first happens; every one is counted in the report.
   const std::uint32_t refusals = console_->refusal_reasons_seen() & ~told_refusals_;
@@ -166,9 +164,6 @@ void LiveInputs::after_step(const session::SurgicalSession& s, std::uint64_t ste
                  lost ? "was lost: the instrument is held still, the cautery off"
                       : "is back: the instrument follows it again");
   }
-  const double due = start_s_ + double(steps_done) * dt;
-  const double wait = due - console_->now_s();
-  if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
 }
 
 nlohmann::ordered_json LiveInputs::finish() {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "console/live_console.hpp"
+#include "runner/input_source.hpp"
 #include "scene/console_settings.hpp"
 #include "session/surgical_session.hpp"
 #include "surgery/input_script.hpp"
@@ -59,18 +60,19 @@ nlohmann::ordered_json loss_report(const console::LiveConsoleStats& stats);
 pid_t spawn_emulator(const std::string& script, const std::string& scene, std::uint16_t port,
                      double seconds, bool loop);
 
-class LiveInputs {
+// A runner input source: run it with real-time pacing (runner/session_runner.hpp).
+class LiveInputs final : public runner::InputSource {
  public:
   // Starts the link (and the emulator); throws std::runtime_error with a message for the user.
   explicit LiveInputs(const LiveInputOptions& options);
-  ~LiveInputs();
+  ~LiveInputs() override;
   LiveInputs(const LiveInputs&) = delete;
   LiveInputs& operator=(const LiveInputs&) = delete;
 
-  session::SessionInput next(const session::SurgicalSession& session);
-  // After a step: publishes the local models, then sleeps until the next step is due (real
-  // time: step k + 1 at start + (k + 1) dt).
-  void after_step(const session::SurgicalSession& session, std::uint64_t steps_done, double dt);
+  session::SessionInput next(const session::SurgicalSession& session) override;
+  // After a step: publishes the local models; says a refusal or a loss on stderr as it happens.
+  void after_step(const session::SurgicalSession& session, std::uint64_t steps_done) override;
+  void stop() override { finish(); }
   // Stops the loop and the emulator; the report's "devices" object.
   nlohmann::ordered_json finish();
 
@@ -78,7 +80,6 @@ class LiveInputs {
   console::LiveConsole* console_ = nullptr;
   std::unique_ptr<console::LiveConsole> owned_;
   pid_t emulator_ = -1;
-  double start_s_ = -1;
   bool finished_ = false;
   std::array<bool, 2> told_lost_{};  // per instrument: a loss said on stderr, not yet its end
   std::uint32_t told_refusals_ = 0;  // refusal reasons said on stderr

@@ -16,6 +16,7 @@
 #include "render/offscreen_context.hpp"
 #include "render/renderer.hpp"
 #include "render/stereo_view.hpp"
+#include "runner/session_runner.hpp"
 #include "scene/scene_file.hpp"
 #include "session/surgical_session.hpp"
 #include "surgery/input_script.hpp"
@@ -94,19 +95,20 @@ int run_render_command(const RenderOptions& o) {
   const render::OrbitCamera orbit = render::default_orbit(frame);
   const double dt = session->scene.patch.world.model.solver.dt;
   double draw_ms = 0;
-  std::uint64_t steps = 0;
+  std::optional<runner::ScriptInput> script_input;
+  runner::IdleInput idle;
+  runner::InputSource& input =
+      script ? static_cast<runner::InputSource&>(script_input.emplace(*script)) : idle;
+  runner::SessionRunner run(*session, input, exec);
   for (int k = 0; k < o.frames; ++k) {
     // Step until the frame's simulated time.
     const double t_frame = double(k) / o.fps;
-    while (double(steps) * dt + 0.5 * dt < t_frame) {
-      const session::SessionInput input =
-          script ? session::sample_script(*script, double(steps) * dt) : session::SessionInput{};
-      const physics::StepResult r = session::step_session(*session, input, exec);
-      if (!r.ok()) {
-        std::cerr << "imasim render: the step failed at " << double(steps) * dt << " s\n";
+    while (double(run.steps_done()) * dt + 0.5 * dt < t_frame) {
+      if (!run.step().ok()) {
+        std::cerr << "imasim render: the step failed at " << double(run.steps_done()) * dt
+                  << " s\n";
         return 1;
       }
-      ++steps;
     }
     const auto t0 = std::chrono::steady_clock::now();
     render::frame_of_session(*session, frame);
@@ -136,7 +138,7 @@ int run_render_command(const RenderOptions& o) {
     j["frames"] = o.frames;
     j["width"] = o.width;
     j["height"] = o.height;
-    j["simulated_s"] = double(steps) * dt;
+    j["simulated_s"] = double(run.steps_done()) * dt;
     j["draw_ms_per_frame"] = draw_ms / o.frames;
     j["renderer"] = context->renderer_name();
     j["out"] = o.out_dir;

@@ -26,6 +26,10 @@
 #include "run_progress.hpp"
 #include "run_recording.hpp"
 #include "run_trainee_record.hpp"
+#include "run_watch.hpp"
+#include "runner/event_csv_observer.hpp"
+#include "runner/input_stream_recorder.hpp"
+#include "runner/session_runner.hpp"
 #include "scene/scene_file.hpp"
 #include "scene/solver_budget.hpp"
 #include "scene/thorax_scene.hpp"
@@ -313,7 +317,7 @@ int run_run_command(const RunOptions& o) {
                                   : !o.record_file.empty()
                                       ? RunRecording::events_path_of(o.record_file)
                                       : std::string();
-  std::optional<metrics::EventCsvWriter> events_out;
+  std::optional<runner::EventCsvObserver> events_out;
   if (!events_file.empty()) {
     if (!instruments) {
       std::cerr << "imasim run: --events needs instruments (--script, --devices or --replay)\n";
@@ -321,13 +325,14 @@ int run_run_command(const RunOptions& o) {
     }
     try {
       const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file};
-      events_out.emplace(metrics::OutputFile(events_file, "the events file", inputs));
+      events_out.emplace(
+          metrics::EventCsvWriter(metrics::OutputFile(events_file, "the events file", inputs)));
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
     }
   }
-  std::optional<metrics::OutputFile> record_out;
+  std::optional<runner::InputStreamRecorder> record_out;
   if (!o.record_input_file.empty()) {
     if (!instruments) {
       std::cerr << "imasim run: --record-input needs instruments (--script, --devices or "
@@ -336,9 +341,8 @@ int run_run_command(const RunOptions& o) {
     }
     try {
       const std::string inputs[] = {o.scene_file, o.script_file, o.replay_file, events_file};
-      record_out.emplace(o.record_input_file, "the input stream", inputs);
-      record_out->write("# imasim input stream v2: one line a 5 ms step (docs/haptics.md)\n" +
-                        console::format_stream_origin(origin));
+      record_out.emplace(metrics::OutputFile(o.record_input_file, "the input stream", inputs),
+                         origin);
     } catch (const metrics::OutputError& e) {
       std::cerr << "imasim run: " << e.what() << '\n';
       return 2;
@@ -362,7 +366,6 @@ int run_run_command(const RunOptions& o) {
   physics::Executor exec(o.threads);
   tissue::TissueWorld& w = scene.patch.world;
   const tissue::MeshObject& ima = w.meshes[scene.patch.ima];
-  const tissue::MeshObject& wall = w.meshes[scene.patch.wall];
 
   std::optional<RunAutopilot> autopilot;
   if (o.autopilot.enabled) {
@@ -444,98 +447,49 @@ int run_run_command(const RunOptions& o) {
               << "--iterations run faster)\n";
   }
   const auto steps = static_cast<std::uint64_t>(std::llround(seconds / double(w.model.solver.dt)));
-  std::vector<double> step_ms;
-  step_ms.reserve(steps);
-  physics::StepResult failure;
-  double ima_motion = 0, chest_wall_motion = 0;
-  std::uint32_t max_contacts = 0;
-  std::uint64_t missed_heart_contacts = 0;
-  physics::ProfileTotals profile;
-  std::uint64_t done = 0;
-  std::optional<std::string> output_failure;
-  std::uint64_t inputs_recorded = 0;  // lines of the input stream, for its end line
   install_interrupt_handlers();
   RunProgress progress("imasim run", seconds, double(w.model.solver.dt), o.progress, std::cerr);
-  for (; done < steps && interrupt_signal() == 0; ++done) {
-    const auto t0 = std::chrono::steady_clock::now();
-    session::SessionInput input;
-    if (live_inputs)
-      input = live_inputs->next(*surgical);
-    else if (replay)
-      input = (*replay)[done];
-    else if (script)
-      input = session::sample_script(*script, w.state.time);
-    else if (autopilot)
-      input = autopilot->next(*surgical);
-    if (record_out) {
-      try {
-        record_out->write(console::format_input_line(done, input) + '\n');
-        ++inputs_recorded;
-        record_out->flush_if_due();
-      } catch (const metrics::OutputError& e) {
-        output_failure = e.what();
+  RunWatch watch(scene, progress, steps);
+  physics::StepResult failure;
+  std::uint64_t done = 0;
+  std::optional<std::string> output_failure;
+  if (surgical) {
+    // The session's steps through the one runner: its input, then its observers in order.
+    std::optional<runner::ScriptInput> script_input;
+    std::optional<runner::ReplayInput> replay_input;
+    runner::InputSource* source = live_inputs.get();
+    if (!source && replay) source = &replay_input.emplace(std::move(*replay));
+    if (!source && script) source = &script_input.emplace(*script);
+    if (!source) source = &*autopilot;
+    runner::SessionRunner run(
+        *surgical, *source, exec,
+        live_inputs ? runner::Pacing::real_time : runner::Pacing::as_fast_as_possible);
+    run.observe(watch);
+    if (record_out) run.observe(*record_out);
+    if (recording) run.observe(*recording);
+    if (events_out) run.observe(*events_out);
+    const runner::RunOutcome outcome = run.run(steps, [] { return interrupt_signal() != 0; });
+    done = outcome.steps;
+    failure = outcome.failure;
+    if (!outcome.output_error.empty()) output_failure = outcome.output_error;
+  } else {
+    // The scene alone (no instruments): nothing to take input from or record.
+    for (; done < steps && interrupt_signal() == 0; ++done) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const physics::StepResult r = scene::step_thorax_scene(scene, exec);
+      if (!r.ok()) {
+        failure = r;
         break;
       }
+      watch.watch(
+          r,
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
-    const physics::StepResult r = surgical ? session::step_session(*surgical, input, exec)
-                                           : scene::step_thorax_scene(scene, exec);
-    step_ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    if (!r.ok()) {
-      failure = r;
-      break;
-    }
-    profile.add(r.profile);
-    max_contacts = std::max(max_contacts, scene.heart.last_contacts);
-    missed_heart_contacts += scene.missed_heart_contacts;
-    for (std::uint32_t k = 0; k < ima.particle_count; ++k) {
-      const std::uint32_t i = ima.first_particle + k;
-      ima_motion = std::max(
-          ima_motion,
-          double((w.state.particles.position[i] - w.state.particles.rest_position[i]).norm()));
-    }
-    chest_wall_motion = std::max(chest_wall_motion, tissue::max_displacement(w, wall));
-    if (recording) {
-      try {
-        recording->sample(*surgical);
-      } catch (const metrics::OutputError& e) {
-        output_failure = e.what();
-        ++done;
-        break;
-      }
-    }
-    if (events_out) {
-      try {
-        events_out->append_new(surgical->events);
-      } catch (const metrics::OutputError& e) {
-        output_failure = e.what();
-        ++done;
-        break;
-      }
-    }
-    progress.update(w.state.time);
-    if (live_inputs) live_inputs->after_step(*surgical, done + 1, double(w.model.solver.dt));
   }
   progress.finish();
   nlohmann::ordered_json device_report;
   if (live_inputs) device_report = live_inputs->finish();
-  if (record_out && !output_failure) {
-    try {
-      record_out->write(console::format_stream_end(inputs_recorded));
-      record_out->close();
-    } catch (const metrics::OutputError& e) {
-      output_failure = e.what();
-    }
-  }
-  // Whatever ended the run, the events recorded so far reach the file.
-  if (events_out && !output_failure) {
-    try {
-      events_out->finish(surgical->events);
-    } catch (const metrics::OutputError& e) {
-      output_failure = e.what();
-    }
-  }
-  const double median_ms = median(step_ms);
+  const double median_ms = watch.median_ms();
   bool finite = true;
   for (const Vec3& x : w.state.particles.position)
     finite = finite && x.allFinite();
@@ -560,17 +514,17 @@ int run_run_command(const RunOptions& o) {
   out["steps"] = done;
   out["simulated_s"] = w.state.time;
   out["heart_phase"] = scene.heart.phase;
-  out["ima_motion_max_m"] = ima_motion;
+  out["ima_motion_max_m"] = watch.ima_motion();
   // The ribs and the wall's surface over the run (bone: should stay 0).
-  out["chest_wall_motion_max_m"] = chest_wall_motion;
-  out["heart_contacts_max"] = max_contacts;
-  out["missed_heart_contacts"] = missed_heart_contacts;  // a warning: should stay 0
+  out["chest_wall_motion_max_m"] = watch.chest_wall_motion();
+  out["heart_contacts_max"] = watch.max_contacts();
+  out["missed_heart_contacts"] = watch.missed_heart_contacts();  // a warning: should stay 0
   // Each mesh's solver, and with the implicit one the steps whose Newton solve ran out of
   // iterations above its tolerance (a warning: rare buckling of slack fascia).
   add_implicit_report(out, "fascia", scene.implicit_fascia);
   add_implicit_report(out, "vessel", scene.implicit_vessel);
   out["ms_per_step_median"] = median_ms;
-  out["profile_ms_per_step"] = profile_report(profile);  // mean per stage
+  out["profile_ms_per_step"] = profile_report(watch.profile());  // mean per stage
   out["substeps"] = w.model.solver.substeps;
   out["iterations"] = w.model.solver.iterations;
   out["fascia_max_displacement_m"] = tissue::max_displacement(w, w.meshes[scene.patch.fascia]);
@@ -585,7 +539,7 @@ int run_run_command(const RunOptions& o) {
     if (live_inputs) out["devices"] = device_report;
     if (autopilot) out["operator"] = autopilot->report(*surgical);
     add_session_report(out, *surgical);
-    if (events_out) out["events_written"] = events_out->written();
+    if (events_out) out["events_written"] = events_out->writer().written();
   }
   add_status(out, finite, failure, done);
   if (const int signal = interrupt_signal(); signal != 0) {

@@ -22,11 +22,13 @@
 #include "metrics/spatial_asymmetry.hpp"
 #include "metrics/trainee_records.hpp"
 #include "metrics/trajectory_recorder.hpp"
+#include "runner/step_observer.hpp"
 #include "session/surgical_session.hpp"
 
 namespace imasim::cli {
 
-class RunRecording {
+// A step observer of the session runner: a row when one is due after each step.
+class RunRecording final : public runner::StepObserver {
  public:
   // Opens FILE.csv and writes FILE.json, FILE.centerline.csv, FILE.heart.obj and
   // FILE.frame.json; throws
@@ -38,6 +40,9 @@ class RunRecording {
 
   // A row when one is due at the session's time (call at the start and after each step).
   void sample(const session::SurgicalSession& session);
+  void after_step(const session::SurgicalSession& session, const runner::StepRecord&) override {
+    sample(session);
+  }
   // Closes the CSV and rewrites the side file with `ending` (status, steps, rows) and the
   // scores; returns them: the SAI of each instrument's tips (eq. 20, R = 2 mm) and the trainee
   // metrics with their thresholds and pass or fail (metrics/trainee_metrics.hpp). Draws the two

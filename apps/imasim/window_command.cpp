@@ -14,6 +14,7 @@
 #include "interrupt.hpp"
 #include "live_inputs.hpp"
 #include "report.hpp"
+#include "runner/input_source.hpp"
 #include "scene/scene_file.hpp"
 #include "ui/key_bindings.hpp"
 #include "ui/window_app.hpp"
@@ -162,12 +163,12 @@ int run_window_command(const WindowCommandOptions& o) {
 
   // The input: the script, or the console with the keyboard first and any live device after it
   // (polled later, so a device's hands and pedal win where both drive them).
-  std::unique_ptr<ui::InputSource> input;
+  std::unique_ptr<runner::InputSource> input;
   ui::KeyboardMouseDevice* keyboard = nullptr;
   std::optional<EmulatorProcess> emulator;
   try {
     if (devices == "script") {
-      input = std::make_unique<ui::ScriptInput>(*script);
+      input = std::make_unique<runner::ScriptInput>(*script);
     } else {
       std::vector<std::unique_ptr<devices::InputDevice>> list;
       auto kb =
@@ -198,7 +199,8 @@ int run_window_command(const WindowCommandOptions& o) {
       // The keyboard alone renders no force: the loop only reads keys, so it sleeps to each
       // tick instead of spinning the last part (a core's tenth back for drawing and physics).
       if (devices == "keyboard") params.loop.spin_s = 0;
-      input = std::make_unique<ui::ConsoleInputSource>(std::move(list), keyboard, params);
+      input = std::make_unique<runner::ConsoleInputSource>(std::move(list), params,
+                                                           [keyboard] { keyboard->reset(); });
       if (devices == "emulator") {
         const double plays = o.seconds > 0 ? o.seconds + 1 : 24 * 3600.0;
         emulator.emplace(spawn_emulator(o.script_file, o.scene_file, port, plays, false));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <stdexcept>
 
 #include "console/console_settings_use.hpp"
 #include "metrics/output_file.hpp"
@@ -19,7 +20,7 @@ double seconds_since(Clock::time_point t0) {
 }
 
 // Behind real time by more than this, the pacing starts afresh instead of running steps back
-// to back to catch up (a machine slower than real time just runs slower).
+// to back to catch up (a machine slower than real time just runs slower; unit: s).
 constexpr double kMaxLag_s = 0.1;
 
 }  // namespace
@@ -42,8 +43,9 @@ const char* to_string(SimState s) {
   return "?";
 }
 
-SimThread::SimThread(const SimConfig& config, std::unique_ptr<InputSource> input)
+SimThread::SimThread(const SimConfig& config, std::unique_ptr<runner::InputSource> input)
     : config_(config), input_(std::move(input)), exec_(config.threads) {
+  if (!input_) throw std::invalid_argument("the window's physics thread needs an input source");
   config_.steps_per_frame = std::max(1, config_.steps_per_frame);
   beating_next_.store(config_.scene.playback.beating);
   build_session();
@@ -62,7 +64,18 @@ void SimThread::build_session() {
   score_ =
       std::make_unique<SessionScore>(*session_, console::force_model_params(config_.scene.console),
                                      config_.scene.patch.vessel.radius);
-  steps_ = 0;
+  if (!runner_) {
+    runner_ = std::make_unique<runner::SessionRunner>(
+        *session_, *input_, exec_,
+        config_.realtime ? runner::Pacing::real_time : runner::Pacing::as_fast_as_possible);
+    runner_->set_max_lag(kMaxLag_s);
+    runner_->observe(*this);
+    runner_->adjust_input([this](session::SessionInput& in) {
+      if (const float optics = optics_.load(); optics >= 0) in.camera.optics = Real(optics);
+    });
+  } else {
+    runner_->restart(*session_);
+  }
   score_->sample(*session_);  // the state before the first step
   ++numbers_out_.session;
   numbers_out_.hands = {};
@@ -125,8 +138,7 @@ void SimThread::take_commands() {
     state_ = SimState::restarting;
     publish(false);
     try {
-      build_session();
-      input_->restart();
+      build_session();  // the runner restarts the input with it
       state_ = paused_.load() ? SimState::paused : SimState::running;
       note(beating_next_.load() ? "new session: dynamic heart" : "new session: static heart");
     } catch (const std::exception& e) {
@@ -180,24 +192,26 @@ void SimThread::finish_session(const char* why) {
 }
 
 void SimThread::step_once() {
-  session::SessionInput input = input_->next(*session_);
-  if (const float optics = optics_.load(); optics >= 0) input.camera.optics = Real(optics);
-  const auto t0 = Clock::now();
-  const physics::StepResult r = session::step_session(*session_, input, exec_);
-  last_step_ms_ = 1000 * seconds_since(t0);
-  ++steps_;
-  numbers_out_.power_w = input.right.power;
-  numbers_out_.optics_rad = input.camera.optics;
-  if (!r.ok()) {
+  const runner::StepOutcome out = runner_->step();
+  last_step_ms_ = out.step_ms;
+  if (!out.result.ok()) {
     state_ = SimState::failed;
-    note(std::string("the step was refused (") + physics::to_string(r.status) +
+    note(std::string("the step was refused (") + physics::to_string(out.result.status) +
          "): restart with F5");
     publish(true);
     return;
   }
-  input_->after_step(*session_, steps_);
+  if (steps() % std::uint64_t(config_.steps_per_frame) == 0) publish(true);
+  if (config_.end_s > 0 && session_->scene.patch.world.state.time >= config_.end_s - 1e-9)
+    finish_session("reached the end time: score card ready");
+}
+
+void SimThread::after_step(const session::SurgicalSession& s, const runner::StepRecord& record) {
+  numbers_out_.power_w = record.input.right.power;
+  numbers_out_.optics_rad = record.input.camera.optics;
+  // A recording that cannot be written stops; the session goes on.
   try {
-    score_->sample(*session_);
+    score_->sample(s);
   } catch (const metrics::OutputError& e) {
     record_.store(false);
     try {
@@ -206,9 +220,6 @@ void SimThread::step_once() {
     }
     note(e.what());
   }
-  if (steps_ % std::uint64_t(config_.steps_per_frame) == 0) publish(true);
-  if (config_.end_s > 0 && session_->scene.patch.world.state.time >= config_.end_s - 1e-9)
-    finish_session("reached the end time: score card ready");
 }
 
 void SimThread::publish(bool frame) {
@@ -234,7 +245,7 @@ void SimThread::publish(bool frame) {
       rate_sim_s_ = w.state.time;
     }
     n.time_s = w.state.time;
-    n.steps = steps_;
+    n.steps = steps();
     n.beating = s.scene.heart.playback.beating;
     n.heart_rate_bpm = s.scene.heart.playback.heart_rate_bpm;
     n.heart_phase = s.scene.heart.phase;
@@ -295,10 +306,6 @@ void SimThread::publish(bool frame) {
 void SimThread::run() {
   publish(true);
   state_ = paused_.load() ? SimState::paused : SimState::running;
-  const double dt = double(session_->scene.patch.world.model.solver.dt);
-  Clock::time_point base = Clock::now();
-  std::uint64_t base_steps = 0;
-  bool repace = true;
   Clock::time_point lap = Clock::now();
   while (!quit_.load()) {
     // Wall-clock time spent running, for the session's overall real-time factor.
@@ -306,29 +313,14 @@ void SimThread::run() {
     if (state_ == SimState::running)
       numbers_out_.running_s += std::chrono::duration<double>(now_lap - lap).count();
     lap = now_lap;
-    const std::uint64_t session_before = numbers_out_.session;
     take_commands();
-    if (numbers_out_.session != session_before) repace = true;
     if (state_ != SimState::running) {
       publish(false);
       std::this_thread::sleep_for(std::chrono::milliseconds(15));
-      repace = true;
+      if (runner_) runner_->repace();
       continue;
     }
-    if (repace) {
-      base = Clock::now();
-      base_steps = steps_;
-      repace = false;
-    }
     step_once();
-    if (!config_.realtime) continue;
-    const auto due = base + std::chrono::duration_cast<Clock::duration>(
-                                std::chrono::duration<double>(double(steps_ - base_steps) * dt));
-    const auto now = Clock::now();
-    if (now < due)
-      std::this_thread::sleep_until(due);
-    else if (std::chrono::duration<double>(now - due).count() > kMaxLag_s)
-      repace = true;
   }
 }
 

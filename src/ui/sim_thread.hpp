@@ -1,6 +1,7 @@
 #pragma once
-// The physics thread of the window: owns the surgical session and steps it in real
-// time at its dt (5 ms) with the input source's input; after every third step (about 60 Hz)
+// The physics thread of the window: owns the surgical session and steps it through the
+// session runner (runner/session_runner.hpp) in real time at its dt (5 ms) with the input
+// source's input; after every third step (about 60 Hz)
 // fills a RenderFrame and the live numbers and publishes them lock-free, so drawing never
 // blocks physics. The window's commands (pause, restart, heart mode, record, end) come the
 // other way through atomics, read once per step.
@@ -15,9 +16,10 @@
 #include "base/latest_value.hpp"
 #include "physics/executor.hpp"
 #include "render/render_frame.hpp"
+#include "runner/input_source.hpp"
+#include "runner/session_runner.hpp"
 #include "scene/thorax_scene.hpp"
 #include "session/surgical_session.hpp"
-#include "ui/input_source.hpp"
 #include "ui/live_numbers.hpp"
 #include "ui/session_score.hpp"
 
@@ -34,12 +36,12 @@ struct SimConfig {
   std::string record_path;  // "": imasim-window.csv in the working directory
 };
 
-class SimThread {
+class SimThread final : private runner::StepObserver {
  public:
   // Builds the first session on the calling thread: throws what make_surgical_session throws
   // (a scene that cannot be built is reported before any window opens).
-  SimThread(const SimConfig& config, std::unique_ptr<InputSource> input);
-  ~SimThread();
+  SimThread(const SimConfig& config, std::unique_ptr<runner::InputSource> input);
+  ~SimThread() override;
   SimThread(const SimThread&) = delete;
   SimThread& operator=(const SimThread&) = delete;
 
@@ -75,6 +77,10 @@ class SimThread {
   void run();
   void build_session();
   void step_once();
+  std::uint64_t steps() const { return runner_ ? runner_->steps_done() : 0; }
+  // After each step the runner takes: the score's sample and, every few steps, the frame.
+  void after_step(const session::SurgicalSession& session,
+                  const runner::StepRecord& record) override;
   void finish_session(const char* why);
   void publish(bool frame);
   void take_commands();
@@ -82,11 +88,11 @@ class SimThread {
   std::string next_record_path();
 
   SimConfig config_;
-  std::unique_ptr<InputSource> input_;
+  std::unique_ptr<runner::InputSource> input_;
   physics::Executor exec_;
   std::unique_ptr<session::SurgicalSession> session_;
+  std::unique_ptr<runner::SessionRunner> runner_;  // steps session_ (null while there is none)
   std::unique_ptr<SessionScore> score_;
-  std::uint64_t steps_ = 0;  // of the current session
   SimState state_ = SimState::starting;
   LiveNumbers numbers_out_;  // physics thread's copy, published whole
   double last_step_ms_ = 0;

@@ -1,17 +1,22 @@
-#include "ui/input_source.hpp"
+#include "runner/input_source.hpp"
 
 #include "console/console_mapping.hpp"
 
-namespace imasim::ui {
+namespace imasim::runner {
 
 session::SessionInput ScriptInput::next(const session::SurgicalSession& s) {
   return session::sample_script(script_, s.scene.patch.world.state.time);
 }
 
+session::SessionInput ReplayInput::next(const session::SurgicalSession&) {
+  if (next_ >= steps_.size()) return session::SessionInput{};
+  return steps_[next_++];
+}
+
 ConsoleInputSource::ConsoleInputSource(std::vector<std::unique_ptr<devices::InputDevice>> devices,
-                                       KeyboardMouseDevice* keyboard,
-                                       const console::LiveConsoleParams& params)
-    : keyboard_(keyboard), console_(std::move(devices), params) {
+                                       const console::LiveConsoleParams& params,
+                                       std::function<void()> on_restart)
+    : on_restart_(std::move(on_restart)), console_(std::move(devices), params) {
   console_.start();
 }
 
@@ -29,11 +34,11 @@ void ConsoleInputSource::after_step(const session::SurgicalSession& s, std::uint
 }
 
 void ConsoleInputSource::restart() {
-  if (keyboard_) keyboard_->reset();
+  if (on_restart_) on_restart_();
 }
 
 void ConsoleInputSource::stop() {
   console_.stop();
 }
 
-}  // namespace imasim::ui
+}  // namespace imasim::runner
