@@ -6,7 +6,7 @@ ASAN_BUILD ?= build-asan
 TSAN_BUILD ?= build-tsan
 CMAKE_FLAGS ?=
 
-.PHONY: deps configure build build-app demo test harvest-check harvest-ci unit-asan fuzz-build fuzz-short fuzz tsan soak format-check layer-check format bench clean
+.PHONY: deps configure build build-app python demo test harvest-check harvest-ci unit-asan fuzz-build fuzz-short fuzz tsan soak format-check layer-check format bench clean
 
 deps:
 	bash scripts/install-deps.sh
@@ -20,6 +20,15 @@ build: configure
 # Only the program `make demo` runs: a newcomer's first command does not compile the tests.
 build-app: configure
 	cmake --build $(BUILD) -j $(JOBS) --target imasim
+
+# The Python module (docs/python.md): built, and put on Debian's /usr/bin/python3's path by a
+# .pth file naming $(BUILD)/python, so `import imasim` works from anywhere (as root, like deps).
+PYTHON_SITE = /usr/local/lib/python3.$(shell /usr/bin/python3 -c 'import sys; print(sys.version_info.minor)')/dist-packages
+python: configure
+	cmake --build $(BUILD) -j $(JOBS) --target imasim_python_module
+	mkdir -p $(PYTHON_SITE)
+	echo "$(abspath $(BUILD))/python" > $(PYTHON_SITE)/imasim.pth
+	/usr/bin/python3 -c "import imasim; print('python: import imasim from', imasim.__file__)"
 
 # The main job: the scripted operator harvests the IMA with the beating and the static heart (3
 # trials each, in parallel processes), then a summary and out/report.html (docs/scoring.md).
@@ -62,7 +71,7 @@ empty :=
 space := $(empty) $(empty)
 ASAN_SKIP = $(subst $(space),|,$(strip $(ASAN_SKIP_TESTS)))
 # Each stage says when it starts, so a slow CI run shows where its time went.
-test: format-check layer-check build
+test: format-check layer-check build python
 	@date -u +'[%T] make test: the Release tests'
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE harvest
 	@date -u +'[%T] make test: the sanitizer build and its unit tests'

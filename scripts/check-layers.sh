@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Enforces the layer order of docs/ARCHITECTURE.md: a layer includes only itself and the
 # layers listed for it below (and base/, the floor under them all), never a higher one. The
-# programs under apps/ are the top layer: they include any layer of src/ (and their own files,
-# by plain name), nothing else.
+# programs under apps/ and the Python module under python/ are the top layer: they include any
+# layer of src/ (and their own files, by plain name), nothing else.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A allowed=(
@@ -29,10 +29,11 @@ for layer in "${!allowed[@]}"; do
   [[ $layer == base ]] || allowed[$layer]+=" base"
 done
 allowed[apps]="${!allowed[*]}"
+allowed[python]="${!allowed[*]}"
 bad=0
 for layer in "${!allowed[@]}"; do
   dir="src/$layer"
-  [[ $layer == apps ]] && dir=apps
+  [[ $layer == apps || $layer == python ]] && dir=$layer
   [[ -d "$dir" ]] || continue
   while IFS=: read -r file line text; do
     inc=$(sed -E 's/.*#include "([a-z_]+)\/.*/\1/' <<<"$text")

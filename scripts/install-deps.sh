@@ -16,6 +16,8 @@ packages=(
   libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri  # OpenGL 3.3 through EGL, Mesa's llvmpipe
   libglfw3-dev libimgui-dev libstb-dev  # the window, its panels, PNG frames
   xvfb xauth xdotool  # tests only: the window under a virtual display, real key presses
+  python3-dev pybind11-dev python3-numpy  # the Python module, for Debian's /usr/bin/python3
+  python3-pytest  # tests only: the Python module's tests
 )
 
 missing=()

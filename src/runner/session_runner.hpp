@@ -43,6 +43,8 @@ class SessionRunner {
 
   // Observers see each step in the order they were added.
   void observe(StepObserver& observer) { observers_.push_back(&observer); }
+  // The observer sees no more steps (it is not told finish()).
+  void forget(const StepObserver& observer) { std::erase(observers_, &observer); }
   // Changes the input's step before the session takes it (the window's optics slider).
   void adjust_input(std::function<void(session::SessionInput&)> adjust) {
     adjust_ = std::move(adjust);
