@@ -43,6 +43,7 @@ class RunRecording final : public runner::StepObserver {
   void after_step(const session::SurgicalSession& session, const runner::StepRecord&) override {
     sample(session);
   }
+  using runner::StepObserver::finish;  // the run's end as an observer: nothing (the finish below)
   // Closes the CSV and rewrites the side file with `ending` (status, steps, rows) and the
   // scores; returns them: the SAI of each instrument's tips (eq. 20, R = 2 mm) and the trainee
   // metrics with their thresholds and pass or fail (metrics/trainee_metrics.hpp). Draws the two
