@@ -99,8 +99,8 @@ HarvestStep HarvestCore::observe(double reward) {
     out.observation[k++] = float(t.force_normal);
     out.observation[k++] = float(t.force_tangential);
     out.observation[k++] = float(t.force_thermal);
-    out.max_force_n =
-        std::max(out.max_force_n, double(t.force_normal + t.force_tangential + t.force_thermal));
+    // As the trainee metrics' excessive force: either hand's normal force (eq. 17).
+    out.max_force_n = std::max(out.max_force_n, double(t.force_normal));
   }
   out.observation[k++] = float(s.tools[0].jaw_angle);
   out.observation[k++] = s.pedal == surgery::PedalMode::cut    ? 1.0f

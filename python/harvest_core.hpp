@@ -41,7 +41,7 @@ struct HarvestStep {
   bool truncated = false;   // the episode's time is up, or a step was refused
   double pedicle_divided = 0;
   std::uint64_t ima_injuries = 0;
-  double max_force_n = 0;  // the larger eq. 17-19 total of the two instruments (unit: N)
+  double max_force_n = 0;  // the larger of the two eq. 17 normal forces (unit: N)
 };
 
 class HarvestCore {

@@ -22,14 +22,15 @@ declare -A allowed=(
   [render]="render session scene surgery tissue physics geometry math"
   [console]="console session scene surgery tissue physics geometry math devices haptics metrics"
   [runner]="runner console autopilot session scene surgery tissue physics geometry math devices haptics metrics"
-  [ui]="ui render runner autopilot console session scene surgery tissue physics geometry math devices haptics metrics"
+  [ui]="ui render runner console session scene surgery tissue physics geometry math devices haptics metrics"
 )
 # base/ is the floor under every layer: the shared basics (the lock-free hand-off between threads).
 for layer in "${!allowed[@]}"; do
   [[ $layer == base ]] || allowed[$layer]+=" base"
 done
-allowed[apps]="${!allowed[*]}"
-allowed[python]="${!allowed[*]}"
+src_layers="${!allowed[*]}"
+allowed[apps]=$src_layers
+allowed[python]=$src_layers
 bad=0
 for layer in "${!allowed[@]}"; do
   dir="src/$layer"

@@ -5,8 +5,8 @@ pedal (> 0.5 cut, < -0.5 coagulate). The translations move each instrument's too
 MAX_TOOL_SPEED (m/s) over the action's PHYSICS_STEPS_PER_ACTION steps of 5 ms.
 Observation (18 float32): OBSERVATION_NAMES.
 Reward: REWARD["progress"] times the share of the pedicle's strands divided this action, minus
-REWARD["injury"] per IMA injury, minus REWARD["force_per_n"] per newton either instrument feels
-above the trainee metrics' excessive force (4 N), minus REWARD["time"] per action.
+REWARD["injury"] per IMA injury, minus REWARD["force_per_n"] per newton of either instrument's
+normal force (eq. 17) above the trainee metrics' excessive force (4 N), minus REWARD["time"] per action.
 Terminated: the pedicle divided, or the IMA injured. Truncated: the episode's time is up, or
 the physics refused a step.
 """
