@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 #include <thread>
@@ -177,6 +178,11 @@ py::tuple rollout(std::vector<HarvestCore*> cores,
     throw std::invalid_argument("actions: an array of n_envs x T x " + std::to_string(kActionSize));
   for (const HarvestCore* c : cores)
     if (c == nullptr) throw std::invalid_argument("rollout: an environment is None");
+  // Each environment on one thread only: the same one twice would be stepped by two at once.
+  std::vector<const HarvestCore*> sorted(cores.begin(), cores.end());
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    throw std::invalid_argument("rollout: an environment is given twice");
   const std::size_t n = cores.size(), steps = std::size_t(actions.shape(1));
   std::vector<HarvestStep> results(n * steps);
   std::vector<std::string> errors(n);

@@ -108,6 +108,10 @@ def test_bad_actions_and_arguments_are_refused():
         imasim.HarvestEnv(episode_seconds=0)
     with pytest.raises(ValueError, match="n_envs x T x 8"):
         imasim.rollout([env], np.zeros((2, 3, 8)))
+    with pytest.raises(ValueError, match="given twice"):
+        imasim.rollout([env, env], np.zeros((2, 3, 8)))
+    with pytest.raises(ValueError, match="before reset"):
+        imasim.rollout([imasim.HarvestEnv()], np.zeros((1, 2, 8)))
 
 
 def test_the_fallback_box_behaves_as_gymnasiums():
